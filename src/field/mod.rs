@@ -1,0 +1,3 @@
+//! Height fields: each method computes a [`Grid`](crate::grid::Grid) of heights in meters.
+
+pub mod perlin;

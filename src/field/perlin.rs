@@ -1,0 +1,1 @@
+//! Periodic multi-octave Perlin noise (fBm), Li Tian eq. 9.

@@ -1,0 +1,4 @@
+//! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
+
+pub mod field;
+pub mod grid;
