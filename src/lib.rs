@@ -2,3 +2,5 @@
 
 pub mod field;
 pub mod grid;
+pub mod rng;
+pub mod spectrum;

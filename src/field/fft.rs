@@ -1,0 +1,519 @@
+//! Tessendorf's FFT ocean (Li Tian eq. 1–8; Li, He & Gong §3).
+//!
+//! Conventions, stated once:
+//! - Wavevector indices `(n, m)` with k = 2π·(n/Lx, m/Ly); the grid resolves
+//!   n ∈ [−N/2, N/2), m ∈ [−M/2, M/2) (Li Tian eq. 5).
+//! - Amplitudes: h̃0(k) = (ξr + iξi)/√2 · √P(k), with (ξr, ξi) drawn from
+//!   `(seed, n, m)` by [`crate::rng::gaussian_pair`], so the same seed over the same extent
+//!   gives the same long waves at every resolution.
+//! - Time: h̃(k,t) = h̃0(k)·e^{−iωt} + conj(h̃0(−k))·e^{iωt}. With the synthesis sum below,
+//!   the energy placed at k travels toward +k (so waves travel with the wind); Tessendorf's
+//!   notes write the opposite sign of t, which makes the same waves run backwards.
+//!   h̃(−k,t) = conj(h̃(k,t)), so the field is real by construction.
+//! - Synthesis: h(x, t) = Σ_k h̃(k,t)·e^{ik·x}, unnormalized (no 1/NM), as in the papers:
+//!   an inverse FFT with a positive exponent.
+//! - Excluded wavevectors: k = 0 (mean zero), and the Nyquist row and column (n = −N/2 for
+//!   even N, m = −M/2 for even M), whose partner −k is not on the grid; without them the
+//!   spectrum is exactly Hermitian.
+//!
+//! The transform: a complex inverse FFT along y for each kx index 0..=N/2 (lines stored
+//! contiguously), a blocked transpose, then a complex-to-real inverse FFT along x per row.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+use realfft::{ComplexToReal, RealFftPlanner};
+use rustfft::num_complex::{Complex, Complex32};
+use rustfft::{Fft, FftPlanner};
+
+use crate::grid::{Grid, GridSpec};
+use crate::rng::gaussian_pair;
+use crate::spectrum::{Dispersion, Spectrum};
+
+/// Signed wavevector index of FFT bin `idx` of a transform of length `len`.
+#[inline]
+pub fn signed_index(idx: usize, len: usize) -> i64 {
+    if idx < len.div_ceil(2) {
+        idx as i64
+    } else {
+        idx as i64 - len as i64
+    }
+}
+
+/// True when the wavevector `(n, m)` takes part in the synthesis (see the module docs).
+#[inline]
+pub fn is_resolved(n: i64, m: i64, nx: usize, ny: usize) -> bool {
+    let nyquist_x = nx % 2 == 0 && n.unsigned_abs() as usize == nx / 2;
+    let nyquist_y = ny % 2 == 0 && m.unsigned_abs() as usize == ny / 2;
+    !(n == 0 && m == 0) && !nyquist_x && !nyquist_y
+}
+
+/// Everything that fixes the random spectrum of one field.
+#[derive(Clone, Copy)]
+pub struct SpectrumSetup<'a> {
+    pub spec: GridSpec,
+    pub spectrum: &'a dyn Spectrum,
+    pub dispersion: Dispersion,
+    /// Seed of the amplitude stream (already a sub-seed).
+    pub seed: u64,
+    pub time_s: f64,
+}
+
+impl SpectrumSetup<'_> {
+    /// Wavevector of indices `(n, m)`, rad/m.
+    #[inline]
+    pub fn wavevector(&self, n: i64, m: i64) -> (f64, f64) {
+        let tau = 2.0 * std::f64::consts::PI;
+        (
+            tau * n as f64 / self.spec.extent_x_m,
+            tau * m as f64 / self.spec.extent_y_m,
+        )
+    }
+
+    fn dk(&self) -> (f64, f64) {
+        self.wavevector(1, 1)
+    }
+
+    /// h̃0 at indices `(n, m)`.
+    #[inline]
+    pub fn h0(&self, n: i64, m: i64) -> Complex<f64> {
+        let (kx, ky) = self.wavevector(n, m);
+        let (dkx, dky) = self.dk();
+        let p = self.spectrum.amplitude_variance(kx, ky, dkx, dky);
+        if p <= 0.0 {
+            return Complex::new(0.0, 0.0);
+        }
+        let (xr, xi) = gaussian_pair(self.seed, n, m);
+        let s = (p * 0.5).sqrt();
+        Complex::new(xr * s, xi * s)
+    }
+
+    /// h̃(k, t) at indices `(n, m)`, and max(|h̃0(k)|, |h̃0(−k)|).
+    #[inline]
+    pub fn amplitude(&self, n: i64, m: i64) -> (Complex<f64>, f64) {
+        let a = self.h0(n, m);
+        let b = self.h0(-n, -m).conj();
+        let peak = a.norm().max(b.norm());
+        if self.time_s == 0.0 {
+            return (a + b, peak);
+        }
+        let (kx, ky) = self.wavevector(n, m);
+        let w = self.dispersion.omega((kx * kx + ky * ky).sqrt());
+        let (s, c) = (w * self.time_s).sin_cos();
+        let e = Complex::new(c, -s);
+        (a * e + b * e.conj(), peak)
+    }
+}
+
+/// The non-redundant half of h̃(k, t): `nx/2 + 1` lines (kx index n = 0..=nx/2), each
+/// holding the `ny` ky bins in FFT order.
+pub struct HalfSpectrum {
+    pub nx: usize,
+    pub ny: usize,
+    pub data: Vec<Complex32>,
+    /// h0max = max over resolved k of |h̃0(k)| (Li Tian §2, the β scale), meters.
+    pub h0max_m: f64,
+}
+
+impl HalfSpectrum {
+    pub fn lines(&self) -> usize {
+        self.nx / 2 + 1
+    }
+
+    /// Σ over the full k plane of |h̃(k)|²: by Parseval, the mean square of the field.
+    pub fn total_power(&self) -> f64 {
+        let lines: Vec<f64> = self
+            .data
+            .par_chunks(self.ny)
+            .enumerate()
+            .map(|(n, line)| {
+                let partner_counted = n == 0 || (self.nx % 2 == 0 && n == self.nx / 2);
+                let w = if partner_counted { 1.0 } else { 2.0 };
+                w * line.iter().map(|c| c.norm_sqr() as f64).sum::<f64>()
+            })
+            .collect();
+        lines.iter().sum()
+    }
+}
+
+/// Builds h̃(k, t) for every resolved wavevector with n ≥ 0.
+pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    let lines = nx / 2 + 1;
+    let mut data = vec![Complex32::new(0.0, 0.0); lines * ny];
+    let h0max = data
+        .par_chunks_mut(ny)
+        .enumerate()
+        .map(|(n, line)| {
+            let n = n as i64;
+            let mut peak = 0.0f64;
+            for (idx, out) in line.iter_mut().enumerate() {
+                let m = signed_index(idx, ny);
+                if !is_resolved(n, m, nx, ny) {
+                    continue;
+                }
+                let (h, p) = setup.amplitude(n, m);
+                peak = peak.max(p);
+                *out = Complex32::new(h.re as f32, h.im as f32);
+            }
+            peak
+        })
+        .reduce(|| 0.0, f64::max);
+    HalfSpectrum {
+        nx,
+        ny,
+        data,
+        h0max_m: h0max,
+    }
+}
+
+/// A planned 2D inverse transform from a [`HalfSpectrum`] to a real N×M field.
+pub struct InverseFft2 {
+    nx: usize,
+    ny: usize,
+    columns: Arc<dyn Fft<f32>>,
+    rows: Arc<dyn ComplexToReal<f32>>,
+}
+
+/// Lines per parallel task in the column pass, and rows per block in the transpose.
+const LINES_PER_TASK: usize = 8;
+const TRANSPOSE_BLOCK: usize = 32;
+
+impl InverseFft2 {
+    pub fn new(nx: usize, ny: usize) -> Self {
+        let columns = FftPlanner::<f32>::new().plan_fft_inverse(ny);
+        let rows = RealFftPlanner::<f32>::new().plan_fft_inverse(nx);
+        Self {
+            nx,
+            ny,
+            columns,
+            rows,
+        }
+    }
+
+    /// h(x) = Σ_k h̃(k)·e^{ik·x} on the grid; `half.data` is used as scratch.
+    pub fn process(&self, half: &mut HalfSpectrum) -> Vec<f32> {
+        assert_eq!((half.nx, half.ny), (self.nx, self.ny), "plan/spectrum size");
+        let (nx, ny) = (self.nx, self.ny);
+        let nh = nx / 2 + 1;
+        // 1. inverse FFT along y of every kx line.
+        let scratch_len = self.columns.get_inplace_scratch_len();
+        half.data
+            .par_chunks_mut(ny * LINES_PER_TASK)
+            .for_each_init(
+                || vec![Complex32::new(0.0, 0.0); scratch_len],
+                |scratch, chunk| self.columns.process_with_scratch(chunk, scratch),
+            );
+        // 2. transpose to rows of constant y.
+        let mut rows = vec![Complex32::new(0.0, 0.0); ny * nh];
+        let src = &half.data;
+        rows.par_chunks_mut(nh * TRANSPOSE_BLOCK)
+            .enumerate()
+            .for_each(|(b, block)| {
+                let j0 = b * TRANSPOSE_BLOCK;
+                let nrows = block.len() / nh;
+                for n in 0..nh {
+                    let col = &src[n * ny + j0..n * ny + j0 + nrows];
+                    for (jj, v) in col.iter().enumerate() {
+                        block[jj * nh + n] = *v;
+                    }
+                }
+            });
+        // 3. complex-to-real inverse FFT along x. The DC bin (and the Nyquist bin for even
+        // N) of every row is real up to round-off because the spectrum is Hermitian.
+        let mut out = vec![0.0f32; nx * ny];
+        let scratch_len = self.rows.get_scratch_len();
+        rows.par_chunks_mut(nh)
+            .zip(out.par_chunks_mut(nx))
+            .for_each_init(
+                || vec![Complex32::new(0.0, 0.0); scratch_len],
+                |scratch, (input, output)| {
+                    input[0].im = 0.0;
+                    if nx % 2 == 0 {
+                        input[nh - 1].im = 0.0;
+                    }
+                    self.rows
+                        .process_with_scratch(input, output, scratch)
+                        .expect("buffer lengths come from the plan");
+                },
+            );
+        out
+    }
+}
+
+/// The FFT height field at `setup.time_s`, and h0max.
+pub fn fft_field(setup: &SpectrumSetup) -> (Grid, f64) {
+    let mut half = synthesize_spectrum(setup);
+    let data = InverseFft2::new(setup.spec.nx, setup.spec.ny).process(&mut half);
+    (Grid::new(setup.spec, data), half.h0max_m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::Phillips;
+
+    /// A spectrum with energy at one wavevector pair ±k only.
+    struct OneComponent {
+        k: (f64, f64),
+        variance: f64,
+    }
+
+    impl Spectrum for OneComponent {
+        fn amplitude_variance(&self, kx: f64, ky: f64, _: f64, _: f64) -> f64 {
+            let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+            if close(kx, self.k.0) && close(ky, self.k.1) {
+                self.variance
+            } else {
+                0.0
+            }
+        }
+    }
+
+    fn phillips_setup(spec: GridSpec, spectrum: &Phillips, seed: u64, time_s: f64) -> SpectrumSetup<'_> {
+        SpectrumSetup {
+            spec,
+            spectrum,
+            dispersion: Dispersion::Deep,
+            seed,
+            time_s,
+        }
+    }
+
+    /// Naive synthesis over the full k plane, in f64, keeping the imaginary part.
+    fn naive_field(setup: &SpectrumSetup) -> Vec<Complex<f64>> {
+        let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+        let mut out = vec![Complex::new(0.0, 0.0); nx * ny];
+        for jm in 0..ny {
+            for in_ in 0..nx {
+                let (n, m) = (signed_index(in_, nx), signed_index(jm, ny));
+                if !is_resolved(n, m, nx, ny) {
+                    continue;
+                }
+                let (h, _) = setup.amplitude(n, m);
+                let (kx, ky) = setup.wavevector(n, m);
+                for j in 0..ny {
+                    for i in 0..nx {
+                        let phase = kx * setup.spec.x_m(i) + ky * setup.spec.y_m(j);
+                        out[j * nx + i] += h * Complex::from_polar(1.0, phase);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn fast_transform_matches_a_naive_sum_and_the_field_is_real() {
+        // Odd and even sizes, non-square extents, a non-zero time.
+        const TOL: f64 = 2e-5;
+        let ph = Phillips::new(1e-3, 9.0, 0.4, 0.0);
+        for (nx, ny) in [(16, 12), (9, 10), (15, 7)] {
+            let spec = GridSpec::new(nx, ny, 40.0, 31.0);
+            let setup = phillips_setup(spec, &ph, 11, 2.5);
+            let naive = naive_field(&setup);
+            let (fast, _) = fft_field(&setup);
+            let scale = naive.iter().map(|c| c.re.abs()).fold(0.0, f64::max);
+            assert!(scale > 0.0);
+            for (idx, (a, b)) in naive.iter().zip(&fast.data).enumerate() {
+                assert!(a.im.abs() <= TOL * scale, "{nx}x{ny}: imaginary part {} at {idx}", a.im);
+                assert!(
+                    (a.re - *b as f64).abs() <= TOL * scale,
+                    "{nx}x{ny}: sample {idx}: naive {} fast {}",
+                    a.re,
+                    b
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn parseval_the_variance_equals_the_summed_power() {
+        const REL_TOL: f64 = 1e-4;
+        let ph = Phillips::new(3e-7, 20.0, 0.3, 0.0);
+        let spec = GridSpec::new(128, 96, 800.0, 600.0);
+        let setup = phillips_setup(spec, &ph, 5, 7.0);
+        let mut half = synthesize_spectrum(&setup);
+        let power = half.total_power();
+        let field = InverseFft2::new(128, 96).process(&mut half);
+        let n = field.len() as f64;
+        let mean = field.iter().map(|&v| v as f64).sum::<f64>() / n;
+        let ms = field.iter().map(|&v| (v as f64) * (v as f64)).sum::<f64>() / n;
+        assert!(mean.abs() < 1e-5 * ms.sqrt(), "mean {mean} should vanish (no k = 0)");
+        assert!((ms - power).abs() <= REL_TOL * power, "variance {ms} vs Σ|h̃|² {power}");
+    }
+
+    #[test]
+    fn mean_variance_over_seeds_approaches_the_expected_value() {
+        // E[var] = Σ_k (P(k) + P(−k)) over resolved k. 200 seeds: the spread of one
+        // field's variance here is ~10 %, so the mean's standard error is below 1 %.
+        const REL_TOL: f64 = 0.03;
+        let ph = Phillips::new(1e-4, 8.0, 1.0, 0.0);
+        let spec = GridSpec::new(32, 32, 100.0, 100.0);
+        let setup = phillips_setup(spec, &ph, 0, 0.0);
+        let mut expected = 0.0;
+        for j in 0..32 {
+            for i in 0..32 {
+                let (n, m) = (signed_index(i, 32), signed_index(j, 32));
+                if is_resolved(n, m, 32, 32) {
+                    let (kx, ky) = setup.wavevector(n, m);
+                    expected += ph.value(kx, ky) + ph.value(-kx, -ky);
+                }
+            }
+        }
+        let seeds = 200;
+        let mut mean_var = 0.0;
+        for seed in 0..seeds {
+            let (g, _) = fft_field(&phillips_setup(spec, &ph, seed, 0.0));
+            mean_var += g.stats().std_m.powi(2) / seeds as f64;
+        }
+        assert!(
+            (mean_var - expected).abs() <= REL_TOL * expected,
+            "mean variance {mean_var} vs expected {expected}"
+        );
+    }
+
+    #[test]
+    fn one_component_is_a_cosine_travelling_along_k_at_the_phase_speed() {
+        const TOL: f64 = 1e-4;
+        let spec = GridSpec::new(64, 32, 128.0, 64.0);
+        let (n, m) = (3i64, 2i64);
+        let tau = 2.0 * std::f64::consts::PI;
+        let k = (tau * n as f64 / 128.0, tau * m as f64 / 64.0);
+        let one = OneComponent { k, variance: 0.5 };
+        let kk = (k.0 * k.0 + k.1 * k.1).sqrt();
+        let omega = (crate::spectrum::G * kk).sqrt();
+        let probe = SpectrumSetup {
+            spec,
+            spectrum: &one,
+            dispersion: Dispersion::Deep,
+            seed: 42,
+            time_s: 0.0,
+        };
+        let h0 = probe.h0(n, m);
+        for t in [0.0, 1.3, 4.0] {
+            let setup = SpectrumSetup { time_s: t, ..probe };
+            let (g, _) = fft_field(&setup);
+            // h = 2|h̃0| cos(k·x − ωt + arg h̃0): crests move along +k at c = ω/k = √(g/k).
+            for j in 0..spec.ny {
+                for i in 0..spec.nx {
+                    let phase = k.0 * spec.x_m(i) + k.1 * spec.y_m(j) - omega * t + h0.arg();
+                    let want = 2.0 * h0.norm() * phase.cos();
+                    let got = g.get(i, j) as f64;
+                    assert!((got - want).abs() < TOL, "t={t} ({i},{j}): {got} vs {want}");
+                }
+            }
+        }
+        assert!(((omega / kk) - (crate::spectrum::G / kk).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_field_is_periodic_over_the_extent() {
+        // Evaluate the naive sum one extent away and compare with the grid.
+        const TOL: f64 = 1e-9;
+        let ph = Phillips::new(1e-3, 6.0, 0.9, 0.0);
+        let spec = GridSpec::new(8, 6, 20.0, 15.0);
+        let setup = phillips_setup(spec, &ph, 3, 1.0);
+        let at = |x: f64, y: f64| {
+            let mut s = Complex::new(0.0, 0.0);
+            for jm in 0..6 {
+                for in_ in 0..8 {
+                    let (n, m) = (signed_index(in_, 8), signed_index(jm, 6));
+                    if is_resolved(n, m, 8, 6) {
+                        let (kx, ky) = setup.wavevector(n, m);
+                        s += setup.amplitude(n, m).0 * Complex::from_polar(1.0, kx * x + ky * y);
+                    }
+                }
+            }
+            s.re
+        };
+        for (x, y) in [(0.3, 0.7), (5.0, 2.0), (13.1, 9.9)] {
+            let h = at(x, y);
+            assert!((at(x + 20.0, y) - h).abs() < TOL, "x-period at ({x},{y})");
+            assert!((at(x, y + 15.0) - h).abs() < TOL, "y-period at ({x},{y})");
+            assert!((at(x + 20.0, y - 30.0) - h).abs() < TOL, "both at ({x},{y})");
+        }
+    }
+
+    #[test]
+    fn resolution_independent_long_waves() {
+        // The 512² field at even samples = the 256² field + only the waves the coarse grid
+        // cannot hold. Their energy is the fine spectrum's power beyond the coarse band.
+        let ph = Phillips::new(3e-7, 10.0, 0.2, 0.0);
+        let coarse_spec = GridSpec::new(256, 256, 512.0, 512.0);
+        let fine_spec = GridSpec::new(512, 512, 512.0, 512.0);
+        let (coarse, _) = fft_field(&phillips_setup(coarse_spec, &ph, 9, 0.0));
+        let (fine, _) = fft_field(&phillips_setup(fine_spec, &ph, 9, 0.0));
+        let mut diff2 = 0.0;
+        for j in 0..256 {
+            for i in 0..256 {
+                let d = fine.get(2 * i, 2 * j) as f64 - coarse.get(i, j) as f64;
+                diff2 += d * d;
+            }
+        }
+        let diff_var = diff2 / (256.0 * 256.0);
+        let coarse_var = coarse.stats().std_m.powi(2);
+        // Expected extra variance: power at wavevectors resolved at 512 but not at 256
+        // (which alias onto the coarse grid when sub-sampled).
+        let setup = phillips_setup(fine_spec, &ph, 9, 0.0);
+        let mut extra = 0.0;
+        for m in -256..256i64 {
+            for n in -256..256i64 {
+                if is_resolved(n, m, 512, 512) && !is_resolved_in(n, m, 256) {
+                    extra += setup.amplitude(n, m).0.norm_sqr();
+                }
+            }
+        }
+        assert!(
+            diff_var < 0.05 * coarse_var,
+            "difference variance {diff_var} is not small next to {coarse_var}"
+        );
+        assert!(
+            (diff_var - extra).abs() < 0.25 * extra + 1e-9 * coarse_var,
+            "the difference {diff_var} should be the short waves' energy {extra}"
+        );
+        // A different seed shares nothing: the difference is then as large as the field.
+        let (other, _) = fft_field(&phillips_setup(coarse_spec, &ph, 10, 0.0));
+        let d2: f64 = (0..256 * 256)
+            .map(|p| (other.data[p] as f64 - coarse.data[p] as f64).powi(2))
+            .sum::<f64>()
+            / 65536.0;
+        assert!(d2 > 1.0 * coarse_var, "different seeds must differ ({d2})");
+    }
+
+    fn is_resolved_in(n: i64, m: i64, size: i64) -> bool {
+        n >= -size / 2 && n < size / 2 && m >= -size / 2 && m < size / 2 && is_resolved(n, m, size as usize, size as usize)
+    }
+
+    #[test]
+    fn h0max_is_the_largest_initial_amplitude() {
+        let ph = Phillips::new(1e-5, 7.0, 0.0, 0.0);
+        let spec = GridSpec::new(16, 16, 64.0, 64.0);
+        let setup = phillips_setup(spec, &ph, 1, 0.0);
+        let half = synthesize_spectrum(&setup);
+        let mut want = 0.0f64;
+        for m in -8..8i64 {
+            for n in -8..8i64 {
+                if is_resolved(n, m, 16, 16) {
+                    want = want.max(setup.h0(n, m).norm());
+                }
+            }
+        }
+        assert!(want > 0.0);
+        assert_eq!(half.h0max_m, want);
+    }
+
+    #[test]
+    fn same_result_with_one_thread_and_two() {
+        let ph = Phillips::new(3e-7, 12.0, 0.5, 0.0);
+        let spec = GridSpec::new(256, 128, 300.0, 150.0);
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| fft_field(&phillips_setup(spec, &ph, 77, 3.0)).0)
+        };
+        assert!(run(1).data == run(2).data, "bit-identical across thread counts");
+    }
+}

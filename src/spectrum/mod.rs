@@ -1,0 +1,23 @@
+//! Wave spectra: how much energy each wavevector carries.
+//!
+//! Every model implements [`Spectrum`], which answers one question for the spectral
+//! methods: the expected squared magnitude E|h̃0(k)|² of the discrete Fourier amplitude
+//! at wavevector `k` on a grid whose wavevector spacing is `dk`.
+//! With h̃(k,t) = h̃0(k)·e^{−iωt} + conj(h̃0(−k))·e^{iωt}, the expected variance of the
+//! field is Σ_k (E|h̃0(k)|² + E|h̃0(−k)|²).
+
+pub mod dispersion;
+pub mod phillips;
+
+pub use dispersion::Dispersion;
+pub use phillips::Phillips;
+
+/// Gravitational acceleration, m/s².
+pub const G: f64 = 9.81;
+
+/// A directional wave spectrum sampled on a discrete wavevector grid.
+pub trait Spectrum: Send + Sync {
+    /// E|h̃0(k)|² in m² for wavevector `(kx, ky)` in rad/m, on a grid with wavevector
+    /// spacing `(dkx, dky)` = 2π·(1/Lx, 1/Ly). Never negative, finite for k ≠ 0.
+    fn amplitude_variance(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> f64;
+}

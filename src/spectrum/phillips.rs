@@ -1,0 +1,99 @@
+//! Phillips spectrum in Tessendorf's discrete convention (Li Tian eq. 7–8):
+//!
+//! P(k) = A · exp(−1/(kL)²) / k⁴ · |k̂·ŵ|² · exp(−k²l²),   L = V²/g,
+//!
+//! where `A` multiplies the discrete Fourier amplitudes directly (so the papers' values of
+//! `A` reproduce their figures, and the field's variance grows with the extent), ŵ is the
+//! unit wind direction, V the wind speed and l the small-wave cutoff length.
+
+use super::{G, Spectrum};
+
+/// A validated Phillips spectrum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Phillips {
+    a: f64,
+    big_l_m: f64,
+    small_l_m: f64,
+    wind_dir: (f64, f64),
+}
+
+impl Phillips {
+    /// `a` > 0 (m²·rad⁴/m⁴, discrete convention), wind speed > 0 m/s, direction in radians
+    /// (0 toward +x), small-wave cutoff `small_wave_m` ≥ 0 (0 disables eq. 8).
+    /// Parameters are validated where they are resolved (see `config`).
+    pub fn new(a: f64, wind_speed_mps: f64, wind_dir_rad: f64, small_wave_m: f64) -> Self {
+        Self {
+            a,
+            big_l_m: wind_speed_mps * wind_speed_mps / G,
+            small_l_m: small_wave_m,
+            wind_dir: (wind_dir_rad.cos(), wind_dir_rad.sin()),
+        }
+    }
+
+    /// The largest wave arising from a continuous wind, L = V²/g, in meters.
+    pub fn largest_wave_m(&self) -> f64 {
+        self.big_l_m
+    }
+
+    /// P(k) at wavevector `(kx, ky)`; 0 at k = 0.
+    pub fn value(&self, kx: f64, ky: f64) -> f64 {
+        let k2 = kx * kx + ky * ky;
+        if k2 == 0.0 {
+            return 0.0;
+        }
+        let kl2 = k2 * self.big_l_m * self.big_l_m;
+        let cos = (kx * self.wind_dir.0 + ky * self.wind_dir.1) / k2.sqrt();
+        self.a * (-1.0 / kl2).exp() / (k2 * k2)
+            * (cos * cos)
+            * (-k2 * self.small_l_m * self.small_l_m).exp()
+    }
+}
+
+impl Spectrum for Phillips {
+    fn amplitude_variance(&self, kx: f64, ky: f64, _dkx: f64, _dky: f64) -> f64 {
+        self.value(kx, ky)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const REL_TOL: f64 = 1e-12;
+
+    #[test]
+    fn matches_the_formula_at_hand_picked_wavevectors() {
+        let p = Phillips::new(2.0, 7.0, 0.0, 0.5);
+        let big_l = 49.0 / G;
+        // Along the wind, k = 0.2: cos = 1.
+        let k: f64 = 0.2;
+        let want = 2.0 * (-1.0 / (k * big_l).powi(2)).exp() / k.powi(4) * (-k * k * 0.25).exp();
+        assert!((p.value(k, 0.0) - want).abs() <= REL_TOL * want);
+        // At 60° to the wind the directional factor is cos² 60° = 1/4.
+        let (kx, ky) = (k * 0.5, k * 3f64.sqrt() / 2.0);
+        assert!((p.value(kx, ky) - want / 4.0).abs() <= REL_TOL * want);
+        // Across the wind there is no energy, and none at k = 0.
+        assert!(p.value(0.0, k).abs() < 1e-30);
+        assert_eq!(p.value(0.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn wind_direction_rotates_the_spectrum() {
+        let p = Phillips::new(1.0, 10.0, std::f64::consts::FRAC_PI_2, 0.0);
+        let q = Phillips::new(1.0, 10.0, 0.0, 0.0);
+        let want = q.value(0.3, 0.0);
+        assert!((p.value(0.0, 0.3) - want).abs() <= REL_TOL * want);
+        assert!((p.value(0.0, -0.3) - want).abs() <= REL_TOL * want);
+    }
+
+    #[test]
+    fn is_finite_and_non_negative_over_a_wide_range() {
+        let p = Phillips::new(3e-7, 50.0, 0.7, 0.0);
+        for i in -50..50 {
+            for j in -50..50 {
+                let v = p.value(i as f64 * 0.37, j as f64 * 0.011);
+                assert!(v.is_finite() && v >= 0.0, "P({i}, {j}) = {v}");
+            }
+        }
+    }
+}
