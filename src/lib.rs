@@ -4,3 +4,5 @@ pub mod field;
 pub mod grid;
 pub mod rng;
 pub mod spectrum;
+pub mod config;
+pub mod error;

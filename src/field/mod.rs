@@ -1,4 +1,121 @@
-//! Height fields: each method computes a [`Grid`](crate::grid::Grid) of heights in meters.
+//! Height fields: each method computes a [`Grid`] of heights in meters.
 
 pub mod fft;
+pub mod hybrid;
 pub mod perlin;
+pub mod weight;
+
+use serde::Serialize;
+
+use crate::config::{Beta, Method, Params, SpectrumModel};
+use crate::error::Result;
+use crate::grid::Grid;
+use crate::rng::{Stream, sub_seed};
+use crate::spectrum::{Dispersion, Phillips};
+
+/// What a synthesis found out along the way, recorded in the sidecar.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct SynthesisInfo {
+    /// max |h̃0(k)| over the resolved wavevectors, meters (FFT methods).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub h0max_m: Option<f64>,
+    /// Phillips' largest wave L = V²/g, meters.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phillips_largest_wave_m: Option<f64>,
+    /// The b of β = (1 − α)·b used by the hybrid blend, meters.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beta_m: Option<f64>,
+    /// Perlin lattice spacing per octave actually used, meters (x, y).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub perlin_wavelengths_m: Vec<(f64, f64)>,
+}
+
+/// A computed field and what was learned computing it.
+pub struct Synthesis {
+    pub grid: Grid,
+    pub info: SynthesisInfo,
+}
+
+/// The Perlin parameters of `params`, with their sub-seed.
+pub fn perlin_params(params: &Params) -> perlin::PerlinParams {
+    let p = &params.perlin;
+    perlin::PerlinParams {
+        octaves: p.octaves,
+        persistence: p.persistence,
+        lacunarity: p.lacunarity,
+        wavelength_m: p.wavelength_m,
+        tileable: p.tileable,
+        seed: sub_seed(params.seed, Stream::Perlin),
+    }
+}
+
+/// The spectrum model of `params`.
+pub fn phillips(params: &Params) -> Phillips {
+    match params.spectrum.model {
+        SpectrumModel::Phillips => Phillips::new(
+            params.spectrum.phillips_a,
+            params.wind.speed_mps,
+            params.wind.direction_deg.to_radians(),
+            params.spectrum.small_wave_m,
+        ),
+    }
+}
+
+/// Computes the field that validated `params` describe.
+pub fn synthesize(params: &Params) -> Result<Synthesis> {
+    let spec = params.grid_spec();
+    let mut info = SynthesisInfo::default();
+    // Inputs that can fail are read before the expensive work.
+    let alpha = match params.method {
+        Method::Hybrid => Some(weight::AlphaMap::new(&params.blend.alpha, &spec)?),
+        _ => None,
+    };
+    let fft = match params.method {
+        Method::Fft | Method::Hybrid => {
+            let model = phillips(params);
+            info.phillips_largest_wave_m = Some(model.largest_wave_m());
+            let setup = fft::SpectrumSetup {
+                spec,
+                spectrum: &model,
+                dispersion: Dispersion::Deep,
+                seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
+                time_s: params.time_s,
+            };
+            let (grid, h0max) = fft::fft_field(&setup);
+            info.h0max_m = Some(h0max);
+            Some(grid)
+        }
+        Method::Perlin => None,
+    };
+    let noise = match params.method {
+        Method::Perlin | Method::Hybrid => {
+            let pp = perlin_params(params);
+            info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
+            Some(perlin::perlin_field(&spec, &pp))
+        }
+        Method::Fft => None,
+    };
+    let grid = match (fft, noise, alpha) {
+        (Some(mut f), Some(p), Some(alpha)) => {
+            let b = match params.blend.beta {
+                Beta::Paper => info.h0max_m.unwrap_or(0.0),
+                Beta::Matched => {
+                    let pstd = Grid::new(spec, p.clone()).stats().std_m;
+                    if pstd > 0.0 { f.stats().std_m / pstd } else { 0.0 }
+                }
+                Beta::Meters(b) => b,
+            } * params.blend.beta_scale;
+            info.beta_m = Some(b);
+            hybrid::blend_in_place(&mut f, &p, &alpha, b as f32);
+            f
+        }
+        (Some(f), None, _) => f,
+        (None, Some(mut p), _) => {
+            let amp = params.perlin.amplitude_m as f32;
+            p.iter_mut().for_each(|v| *v *= amp);
+            Grid::new(spec, p)
+        }
+        _ => unreachable!("every method computes at least one field"),
+    };
+    Ok(Synthesis { grid, info })
+}

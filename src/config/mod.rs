@@ -1,0 +1,445 @@
+//! Parameters: what a preset file, `--set` and the flags can say, their defaults (the
+//! `li-tian` setting) and their validation. Units are in the names; angles are degrees
+//! here and become radians only when the parameters are turned into models.
+
+pub mod layers;
+pub mod presets;
+pub mod values;
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ParamError;
+pub use values::{Beta, Extent2, Range2, Size2};
+
+/// Which field to synthesize.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// α·h_fft + β·h_perlin (Li Tian eq. 10).
+    Hybrid,
+    /// Tessendorf's FFT ocean alone (Li Tian Fig. 2b).
+    Fft,
+    /// Multi-octave Perlin noise alone (Li Tian Fig. 2a), in [−1, 1] times `perlin.amplitude_m`.
+    Perlin,
+}
+
+impl Method {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Hybrid => "hybrid",
+            Method::Fft => "fft",
+            Method::Perlin => "perlin",
+        }
+    }
+}
+
+/// Spectrum models.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpectrumModel {
+    /// Tessendorf's Phillips spectrum, discrete convention.
+    Phillips,
+}
+
+/// Every parameter of a run. Missing keys take the defaults of the `li-tian` preset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Params {
+    pub method: Method,
+    /// One seed per job; sub-seeds for each random stream derive from it by a fixed rule.
+    pub seed: u64,
+    /// Time of the frame, seconds.
+    pub time_s: f64,
+    pub grid: GridParams,
+    pub wind: WindParams,
+    pub spectrum: SpectrumParams,
+    pub perlin: PerlinConfig,
+    pub blend: BlendParams,
+    pub output: OutputParams,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GridParams {
+    /// Samples [N along x, M along y].
+    pub size: Size2,
+    /// Extent [Lx, Ly] in meters; FFT fields repeat with this period.
+    pub extent_m: Extent2,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WindParams {
+    /// Wind speed, m/s (10 m above the sea).
+    pub speed_mps: f64,
+    /// Direction the wind blows toward, degrees: 0 toward +x, 90 toward +y.
+    pub direction_deg: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SpectrumParams {
+    pub model: SpectrumModel,
+    /// Phillips amplitude A (discrete convention: multiplies |h̃0|² directly).
+    pub phillips_a: f64,
+    /// Small-wave cutoff l of Li Tian eq. 8, meters (0: none).
+    pub small_wave_m: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PerlinConfig {
+    /// Number of octaves P.
+    pub octaves: u32,
+    /// Amplitude ratio a between octaves, 0 < a < 1.
+    pub persistence: f64,
+    /// Frequency ratio between octaves.
+    pub lacunarity: f64,
+    /// Base wavelength λ0 of the first octave, meters.
+    pub wavelength_m: f64,
+    /// Make the noise periodic over the extent (λ0 is then rounded to divide it).
+    pub tileable: bool,
+    /// Height of the normalized noise for `--method perlin`, meters (the field is in [−1, 1]·amplitude_m).
+    pub amplitude_m: f64,
+}
+
+/// Which axis a ramp runs along.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    X,
+    Y,
+}
+
+/// The FFT weight α(x, y) of the hybrid blend, in [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum AlphaConfig {
+    /// α = value everywhere (default 1).
+    Constant {
+        #[serde(default = "one")]
+        value: f64,
+    },
+    /// α = 1 − (c/L)^power, c the x or y coordinate, L the extent along it (default, as in
+    /// the paper: y, 3).
+    Ramp {
+        #[serde(default = "axis_y")]
+        axis: Axis,
+        #[serde(default = "three")]
+        power: f64,
+    },
+    /// α = 1 − min(r/radius, 1)^power, r the distance from `center_m`
+    /// (default: the middle of the extent; radius default: half the smaller extent).
+    Radial {
+        #[serde(default = "two")]
+        power: f64,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        center_m: Option<[f64; 2]>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        radius_m: Option<f64>,
+    },
+    /// α from a grayscale PNG (8 or 16 bit; white = 1), resampled bilinearly to the grid;
+    /// image row 0 is y = 0, as in every output.
+    Image { path: PathBuf },
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn two() -> f64 {
+    2.0
+}
+fn three() -> f64 {
+    3.0
+}
+fn axis_y() -> Axis {
+    Axis::Y
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BlendParams {
+    pub alpha: AlphaConfig,
+    /// β = (1 − α)·b·beta_scale; b from `beta` ("paper", "matched" or meters).
+    pub beta: Beta,
+    pub beta_scale: f64,
+}
+
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputParams {
+    /// Fixed heights mapped to 0 and 65535 in 16-bit outputs (default: the field's min..max).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height_range: Option<Range2>,
+}
+
+/// Phillips A of the default preset: gives the `li-tian` setting (512 m, 1 m grid,
+/// 7 m/s) an expected std of 0.26 m, i.e. Hs ≈ 1.05 m, the fully developed
+/// Pierson–Moskowitz sea at 7 m/s (Hs = 0.21·U²/g).
+pub const DEFAULT_PHILLIPS_A: f64 = 1.3e-7;
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            method: Method::Hybrid,
+            seed: 1,
+            time_s: 0.0,
+            grid: GridParams::default(),
+            wind: WindParams::default(),
+            spectrum: SpectrumParams::default(),
+            perlin: PerlinConfig::default(),
+            blend: BlendParams::default(),
+            output: OutputParams::default(),
+        }
+    }
+}
+
+impl Default for GridParams {
+    fn default() -> Self {
+        Self {
+            size: Size2([512, 512]),
+            extent_m: Extent2([512.0, 512.0]),
+        }
+    }
+}
+
+impl Default for WindParams {
+    fn default() -> Self {
+        Self {
+            speed_mps: 7.0,
+            direction_deg: 0.0,
+        }
+    }
+}
+
+impl Default for SpectrumParams {
+    fn default() -> Self {
+        Self {
+            model: SpectrumModel::Phillips,
+            phillips_a: DEFAULT_PHILLIPS_A,
+            small_wave_m: 0.0,
+        }
+    }
+}
+
+impl Default for PerlinConfig {
+    fn default() -> Self {
+        Self {
+            octaves: 6,
+            persistence: 0.5,
+            lacunarity: 2.0,
+            wavelength_m: 64.0,
+            tileable: true,
+            amplitude_m: 1.0,
+        }
+    }
+}
+
+impl Default for AlphaConfig {
+    fn default() -> Self {
+        AlphaConfig::Ramp {
+            axis: Axis::Y,
+            power: 3.0,
+        }
+    }
+}
+
+impl Default for BlendParams {
+    fn default() -> Self {
+        Self {
+            alpha: AlphaConfig::default(),
+            beta: Beta::Paper,
+            beta_scale: 1.0,
+        }
+    }
+}
+
+/// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
+pub const MAX_SIDE: usize = 1 << 16;
+pub const MAX_SAMPLES: usize = 1 << 30;
+
+fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
+    ParamError {
+        name: name.to_string(),
+        allowed: allowed.to_string(),
+        got: got.to_string(),
+    }
+}
+
+fn positive(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(err(name, &format!("a finite number > 0{unit}"), v))
+    }
+}
+
+fn non_negative(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(err(name, &format!("a finite number ≥ 0{unit}"), v))
+    }
+}
+
+fn finite(name: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(err(name, "a finite number", v))
+    }
+}
+
+impl Params {
+    /// Checks every value once; a valid `Params` can always be synthesized.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let [nx, ny] = self.grid.size.0;
+        for (axis, n) in [("x", nx), ("y", ny)] {
+            if !(2..=MAX_SIDE).contains(&n) {
+                return Err(err(
+                    &format!("--size (grid.size, {axis})"),
+                    &format!("between 2 and {MAX_SIDE} samples"),
+                    n,
+                ));
+            }
+        }
+        if nx * ny > MAX_SAMPLES {
+            return Err(err("--size (grid.size)", &format!("at most {MAX_SAMPLES} samples in all"), format!("{nx}x{ny}")));
+        }
+        for (axis, l) in [("x", self.grid.extent_m.0[0]), ("y", self.grid.extent_m.0[1])] {
+            positive(&format!("--extent (grid.extent_m, {axis})"), " m", l)?;
+        }
+        if self.seed > i64::MAX as u64 {
+            return Err(err("--seed (seed)", &format!("between 0 and {}", i64::MAX), self.seed));
+        }
+        finite("--time (time_s)", self.time_s)?;
+        let w = &self.wind;
+        if !(w.speed_mps.is_finite() && w.speed_mps > 0.0 && w.speed_mps <= 100.0) {
+            return Err(err("--wind-speed (wind.speed_mps)", "> 0 and ≤ 100 m/s", w.speed_mps));
+        }
+        finite("--wind-dir (wind.direction_deg)", w.direction_deg)?;
+        let s = &self.spectrum;
+        positive("spectrum.phillips_a", "", s.phillips_a)?;
+        non_negative("spectrum.small_wave_m", " m", s.small_wave_m)?;
+        let p = &self.perlin;
+        if !(1..=24).contains(&p.octaves) {
+            return Err(err("perlin.octaves", "between 1 and 24", p.octaves));
+        }
+        if !(p.persistence > 0.0 && p.persistence < 1.0) {
+            return Err(err("perlin.persistence", "> 0 and < 1", p.persistence));
+        }
+        if !(p.lacunarity.is_finite() && p.lacunarity > 1.0 && p.lacunarity <= 16.0) {
+            return Err(err("perlin.lacunarity", "> 1 and ≤ 16", p.lacunarity));
+        }
+        positive("perlin.wavelength_m", " m", p.wavelength_m)?;
+        non_negative("perlin.amplitude_m", " m", p.amplitude_m)?;
+        match &self.blend.alpha {
+            AlphaConfig::Constant { value } => {
+                if !(0.0..=1.0).contains(value) {
+                    return Err(err("blend.alpha.value", "between 0 and 1", value));
+                }
+            }
+            AlphaConfig::Ramp { power, .. } => positive("blend.alpha.power", "", *power)?,
+            AlphaConfig::Radial {
+                power,
+                center_m,
+                radius_m,
+            } => {
+                positive("blend.alpha.power", "", *power)?;
+                if let Some(c) = center_m {
+                    finite("blend.alpha.center_m (x)", c[0])?;
+                    finite("blend.alpha.center_m (y)", c[1])?;
+                }
+                if let Some(r) = radius_m {
+                    positive("blend.alpha.radius_m", " m", *r)?;
+                }
+            }
+            AlphaConfig::Image { path } => {
+                if path.as_os_str().is_empty() {
+                    return Err(err("blend.alpha.path", "a PNG file", "an empty path"));
+                }
+            }
+        }
+        if let Beta::Meters(b) = self.blend.beta {
+            non_negative("blend.beta", " m", b)?;
+        }
+        non_negative("blend.beta_scale", "", self.blend.beta_scale)?;
+        if let Some(Range2([lo, hi])) = self.output.height_range {
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(err("--height-range (output.height_range)", "MIN:MAX with finite MIN < MAX", format!("{lo}:{hi}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The grid these parameters describe.
+    pub fn grid_spec(&self) -> crate::grid::GridSpec {
+        let [nx, ny] = self.grid.size.0;
+        let [lx, ly] = self.grid.extent_m.0;
+        crate::grid::GridSpec::new(nx, ny, lx, ly)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_round_trip_through_toml_and_json() {
+        let p = Params::default();
+        p.validate().unwrap();
+        let t = toml::to_string(&p).unwrap();
+        assert_eq!(toml::from_str::<Params>(&t).unwrap(), p, "TOML:\n{t}");
+        let j = serde_json::to_string(&p).unwrap();
+        assert_eq!(serde_json::from_str::<Params>(&j).unwrap(), p);
+    }
+
+    #[test]
+    fn several_spellings_of_sizes_extents_ranges_and_beta() {
+        let p: Params = toml::from_str(
+            "[grid]\nsize = \"256x128\"\nextent_m = 1000\n[output]\nheight_range = \"-2:3.5\"\n[blend]\nbeta = 0.4",
+        )
+        .unwrap();
+        assert_eq!(p.grid.size, Size2([256, 128]));
+        assert_eq!(p.grid.extent_m, Extent2([1000.0, 1000.0]));
+        assert_eq!(p.output.height_range, Some(Range2([-2.0, 3.5])));
+        assert_eq!(p.blend.beta, Beta::Meters(0.4));
+        let q: Params = toml::from_str("[grid]\nsize = 64\nextent_m = [10.5, 20]\n[blend]\nbeta = \"matched\"").unwrap();
+        assert_eq!(q.grid.size, Size2([64, 64]));
+        assert_eq!(q.grid.extent_m, Extent2([10.5, 20.0]));
+        assert_eq!(q.blend.beta, Beta::Matched);
+    }
+
+    #[test]
+    fn unknown_keys_are_rejected_with_their_line() {
+        let e = toml::from_str::<Params>("seed = 3\n\n[wind]\nsped_mps = 3\n").unwrap_err().to_string();
+        assert!(e.contains("sped_mps"), "{e}");
+        assert!(e.contains("line 4"), "{e}");
+        let e = toml::from_str::<Params>("[blend.alpha]\nkind = \"ramp\"\naxis = \"y\"\npower = 3\nfoo = 1\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("foo"), "{e}");
+    }
+
+    #[test]
+    fn validation_names_the_parameter_and_the_allowed_range() {
+        let mut p = Params::default();
+        p.wind.speed_mps = -3.0;
+        let e = p.validate().unwrap_err().to_string();
+        assert_eq!(e, "--wind-speed (wind.speed_mps) must be > 0 and ≤ 100 m/s (got -3)");
+        let mut p = Params::default();
+        p.grid.size = Size2([0, 16]);
+        assert!(p.validate().unwrap_err().to_string().contains("between 2 and"));
+        let mut p = Params::default();
+        p.perlin.persistence = 1.0;
+        assert!(p.validate().unwrap_err().to_string().starts_with("perlin.persistence"));
+        let mut p = Params::default();
+        p.time_s = f64::NAN;
+        assert!(p.validate().is_err());
+        let mut p = Params::default();
+        p.output.height_range = Some(Range2([1.0, -1.0]));
+        assert!(p.validate().is_err());
+    }
+}

@@ -1,0 +1,121 @@
+//! Built-in presets (`presets/*.toml`, compiled into the binary) and preset files.
+//!
+//! A preset is a parameter file: TOML, or the JSON sidecar of an earlier output (its
+//! `params` object), which regenerates that output exactly. The first comment line of a
+//! built-in preset is its one-line description.
+
+use std::path::Path;
+
+use super::Params;
+use crate::error::{Error, Result};
+
+/// Name and TOML text of every built-in preset.
+pub const BUILTIN: &[(&str, &str)] = &[
+    ("li-tian", include_str!("../../presets/li-tian.toml")),
+    ("li-tian-fft", include_str!("../../presets/li-tian-fft.toml")),
+    ("li-tian-perlin", include_str!("../../presets/li-tian-perlin.toml")),
+    ("li-tian-45", include_str!("../../presets/li-tian-45.toml")),
+    ("li-tian-90", include_str!("../../presets/li-tian-90.toml")),
+    ("li-tian-135", include_str!("../../presets/li-tian-135.toml")),
+    ("tessendorf-usc", include_str!("../../presets/tessendorf-usc.toml")),
+];
+
+/// The preset used when none is named.
+pub const DEFAULT_PRESET: &str = "li-tian";
+
+/// TOML text of a built-in preset.
+pub fn builtin(name: &str) -> Option<&'static str> {
+    BUILTIN.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// The one-line description of a preset text: its first comment line.
+pub fn description(text: &str) -> &str {
+    text.lines()
+        .find_map(|l| l.trim().strip_prefix('#'))
+        .map(str::trim)
+        .unwrap_or("")
+}
+
+/// Parses TOML preset text; errors name the source, the line and the key.
+pub fn parse_toml(source: &str, text: &str) -> Result<Params> {
+    toml::from_str::<Params>(text).map_err(|e| {
+        let line = e
+            .span()
+            .map(|s| format!(":{}", text[..s.start.min(text.len())].matches('\n').count() + 1))
+            .unwrap_or_default();
+        Error::Preset(format!("{source}{line}: {}", one_line(e.message())))
+    })
+}
+
+/// Parses a JSON parameter file: a sidecar (its `params`) or a bare parameter object.
+pub fn parse_json(source: &str, text: &str) -> Result<Params> {
+    let bad = |e: serde_json::Error| Error::Preset(format!("{source}:{}: {}", e.line(), one_line(&e.to_string())));
+    let value: serde_json::Value = serde_json::from_str(text).map_err(bad)?;
+    let params = match value.get("params") {
+        Some(p) => p.clone(),
+        None => value,
+    };
+    serde_json::from_value(params).map_err(|e| Error::Preset(format!("{source}: {}", one_line(&e.to_string()))))
+}
+
+fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Loads a preset by built-in name or file path (`.toml` or `.json`).
+pub fn load(name_or_path: &str) -> Result<Params> {
+    if let Some(text) = builtin(name_or_path) {
+        return parse_toml(name_or_path, text);
+    }
+    let path = Path::new(name_or_path);
+    if path.is_file() {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Input {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        return match path.extension().and_then(|e| e.to_str()) {
+            Some("json") => parse_json(name_or_path, &text),
+            _ => parse_toml(name_or_path, &text),
+        };
+    }
+    let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
+    Err(Error::Preset(format!(
+        "--preset {name_or_path}: no such preset or file (built-in presets: {})",
+        names.join(", ")
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_preset_parses_validates_and_describes_itself() {
+        for (name, text) in BUILTIN {
+            let p = parse_toml(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
+            p.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(!description(text).is_empty(), "{name} needs a description comment");
+        }
+    }
+
+    #[test]
+    fn the_default_preset_is_the_default_parameter_set() {
+        assert_eq!(load(DEFAULT_PRESET).unwrap(), Params::default());
+    }
+
+    #[test]
+    fn unknown_key_error_names_key_and_line() {
+        let e = parse_toml("bad.toml", "seed = 1\n[perlin]\noctaves = 3\nocataves = 4\n").unwrap_err().to_string();
+        assert!(e.starts_with("bad.toml:4: "), "{e}");
+        assert!(e.contains("ocataves"), "{e}");
+        assert!(!e.contains('\n'), "one line: {e}");
+    }
+
+    #[test]
+    fn a_sidecar_is_a_preset() {
+        let mut p = Params::default();
+        p.seed = 99;
+        let side = serde_json::json!({ "tool": "seasynth", "params": p });
+        assert_eq!(parse_json("x.json", &side.to_string()).unwrap(), p);
+    }
+}

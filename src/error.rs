@@ -1,0 +1,58 @@
+//! Error types of the library. Messages are one line and name the value at fault and
+//! what is allowed; [`Error::is_usage`] tells bad input (exit code 2) from failures.
+
+use std::path::PathBuf;
+
+/// A parameter outside its allowed range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{name} must be {allowed} (got {got})")]
+pub struct ParamError {
+    /// The parameter, as the user can write it (`--wind-speed (wind.speed_mps)`).
+    pub name: String,
+    /// What is allowed, e.g. `> 0 m/s`.
+    pub allowed: String,
+    /// The value given.
+    pub got: String,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// A preset or parameter file that does not parse or has unknown keys.
+    #[error("{0}")]
+    Preset(String),
+    /// A `--set` or flag that does not parse or names an unknown key; `origin` is what
+    /// the user typed (`--set wind.sped_mps=3`, `--size`).
+    #[error("{origin}: {message}")]
+    Set { origin: String, message: String },
+    /// An output path that cannot be used (unknown extension, unwritable folder).
+    #[error("output {path}: {message}")]
+    Output { path: PathBuf, message: String },
+    /// An input file (weight map, preset) that cannot be read or decoded.
+    #[error("{path}: {message}")]
+    Input { path: PathBuf, message: String },
+    /// Reading or writing a file failed while working.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// True for errors caused by the user's input (exit code 2).
+    pub fn is_usage(&self) -> bool {
+        !matches!(self, Error::Io { .. })
+    }
+
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;
