@@ -1,8 +1,12 @@
 //! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
 
+pub mod app;
+pub mod bench;
+pub mod cli;
+pub mod config;
+pub mod error;
+pub mod export;
 pub mod field;
 pub mod grid;
 pub mod rng;
 pub mod spectrum;
-pub mod config;
-pub mod error;

@@ -82,7 +82,9 @@ fn set_path(table: &mut Table, key: &str, value: Value) -> std::result::Result<(
     let (last, parents) = parts.split_last().expect("split gives one part at least");
     let mut cur = table;
     for p in parents {
-        let entry = cur.entry(p.to_string()).or_insert_with(|| Value::Table(Table::new()));
+        let entry = cur
+            .entry(p.to_string())
+            .or_insert_with(|| Value::Table(Table::new()));
         cur = entry
             .as_table_mut()
             .ok_or_else(|| format!("`{p}` in `{key}` is a value, not a table"))?;
@@ -109,9 +111,11 @@ pub fn apply(base: Params, assignments: &[Assignment]) -> Result<Params> {
     let mut first_failing: Option<&Assignment> = None;
     let mut last_error = None;
     for a in assignments {
-        set_path(&mut table, canonical_key(&a.key), parse_value(&a.value)).map_err(|message| Error::Set {
-            origin: a.origin.clone(),
-            message,
+        set_path(&mut table, canonical_key(&a.key), parse_value(&a.value)).map_err(|message| {
+            Error::Set {
+                origin: a.origin.clone(),
+                message,
+            }
         })?;
         match table.clone().try_into::<Params>() {
             Ok(_) => first_failing = None,
@@ -145,10 +149,17 @@ mod tests {
     fn command_line_beats_preset_beats_defaults() {
         let p = resolve(Some("li-tian-90"), &[]).unwrap();
         assert_eq!(p.wind.direction_deg, 90.0);
-        assert_eq!(p.grid.size, Size2([512, 512]), "untouched keys keep the defaults");
+        assert_eq!(
+            p.grid.size,
+            Size2([512, 512]),
+            "untouched keys keep the defaults"
+        );
         let p = resolve(
             Some("li-tian-90"),
-            &[set("wind.direction_deg=30"), Assignment::flag("wind-dir", 45)],
+            &[
+                set("wind.direction_deg=30"),
+                Assignment::flag("wind-dir", 45),
+            ],
         )
         .unwrap();
         assert_eq!(p.wind.direction_deg, 45.0, "later assignments win");
@@ -158,7 +169,12 @@ mod tests {
     fn flag_names_and_keys_and_loose_values() {
         let p = resolve(
             None,
-            &[set("size=64x32"), set("method=fft"), set("perlin.octaves=3"), set("height-range=-1:2")],
+            &[
+                set("size=64x32"),
+                set("method=fft"),
+                set("perlin.octaves=3"),
+                set("height-range=-1:2"),
+            ],
         )
         .unwrap();
         assert_eq!(p.grid.size, Size2([64, 32]));
@@ -169,18 +185,31 @@ mod tests {
 
     #[test]
     fn setting_a_kind_starts_a_fresh_table() {
-        let p = resolve(None, &[set("blend.alpha.kind=constant"), set("blend.alpha.value=0.25")]).unwrap();
+        let p = resolve(
+            None,
+            &[
+                set("blend.alpha.kind=constant"),
+                set("blend.alpha.value=0.25"),
+            ],
+        )
+        .unwrap();
         assert_eq!(p.blend.alpha, AlphaConfig::Constant { value: 0.25 });
     }
 
     #[test]
     fn errors_name_the_assignment() {
-        let e = resolve(None, &[set("wind.sped_mps=3")]).unwrap_err().to_string();
+        let e = resolve(None, &[set("wind.sped_mps=3")])
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("--set wind.sped_mps=3: "), "{e}");
         assert!(e.contains("sped_mps"), "{e}");
-        let e = resolve(None, &[Assignment::flag("wind-speed", -3)]).unwrap_err().to_string();
+        let e = resolve(None, &[Assignment::flag("wind-speed", -3)])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("--wind-speed") && e.contains("-3"), "{e}");
-        let e = resolve(None, &[set("method=spline")]).unwrap_err().to_string();
+        let e = resolve(None, &[set("method=spline")])
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("spline") && e.contains("hybrid"), "{e}");
         assert!(Assignment::parse_set("novalue").is_err());
     }

@@ -306,18 +306,33 @@ impl Params {
             }
         }
         if nx * ny > MAX_SAMPLES {
-            return Err(err("--size (grid.size)", &format!("at most {MAX_SAMPLES} samples in all"), format!("{nx}x{ny}")));
+            return Err(err(
+                "--size (grid.size)",
+                &format!("at most {MAX_SAMPLES} samples in all"),
+                format!("{nx}x{ny}"),
+            ));
         }
-        for (axis, l) in [("x", self.grid.extent_m.0[0]), ("y", self.grid.extent_m.0[1])] {
+        for (axis, l) in [
+            ("x", self.grid.extent_m.0[0]),
+            ("y", self.grid.extent_m.0[1]),
+        ] {
             positive(&format!("--extent (grid.extent_m, {axis})"), " m", l)?;
         }
         if self.seed > i64::MAX as u64 {
-            return Err(err("--seed (seed)", &format!("between 0 and {}", i64::MAX), self.seed));
+            return Err(err(
+                "--seed (seed)",
+                &format!("between 0 and {}", i64::MAX),
+                self.seed,
+            ));
         }
         finite("--time (time_s)", self.time_s)?;
         let w = &self.wind;
         if !(w.speed_mps.is_finite() && w.speed_mps > 0.0 && w.speed_mps <= 100.0) {
-            return Err(err("--wind-speed (wind.speed_mps)", "> 0 and ≤ 100 m/s", w.speed_mps));
+            return Err(err(
+                "--wind-speed (wind.speed_mps)",
+                "> 0 and ≤ 100 m/s",
+                w.speed_mps,
+            ));
         }
         finite("--wind-dir (wind.direction_deg)", w.direction_deg)?;
         let s = &self.spectrum;
@@ -368,7 +383,11 @@ impl Params {
         non_negative("blend.beta_scale", "", self.blend.beta_scale)?;
         if let Some(Range2([lo, hi])) = self.output.height_range {
             if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-                return Err(err("--height-range (output.height_range)", "MIN:MAX with finite MIN < MAX", format!("{lo}:{hi}")));
+                return Err(err(
+                    "--height-range (output.height_range)",
+                    "MIN:MAX with finite MIN < MAX",
+                    format!("{lo}:{hi}"),
+                ));
             }
         }
         Ok(())
@@ -406,7 +425,9 @@ mod tests {
         assert_eq!(p.grid.extent_m, Extent2([1000.0, 1000.0]));
         assert_eq!(p.output.height_range, Some(Range2([-2.0, 3.5])));
         assert_eq!(p.blend.beta, Beta::Meters(0.4));
-        let q: Params = toml::from_str("[grid]\nsize = 64\nextent_m = [10.5, 20]\n[blend]\nbeta = \"matched\"").unwrap();
+        let q: Params =
+            toml::from_str("[grid]\nsize = 64\nextent_m = [10.5, 20]\n[blend]\nbeta = \"matched\"")
+                .unwrap();
         assert_eq!(q.grid.size, Size2([64, 64]));
         assert_eq!(q.grid.extent_m, Extent2([10.5, 20.0]));
         assert_eq!(q.blend.beta, Beta::Matched);
@@ -414,12 +435,16 @@ mod tests {
 
     #[test]
     fn unknown_keys_are_rejected_with_their_line() {
-        let e = toml::from_str::<Params>("seed = 3\n\n[wind]\nsped_mps = 3\n").unwrap_err().to_string();
-        assert!(e.contains("sped_mps"), "{e}");
-        assert!(e.contains("line 4"), "{e}");
-        let e = toml::from_str::<Params>("[blend.alpha]\nkind = \"ramp\"\naxis = \"y\"\npower = 3\nfoo = 1\n")
+        let e = toml::from_str::<Params>("seed = 3\n\n[wind]\nsped_mps = 3\n")
             .unwrap_err()
             .to_string();
+        assert!(e.contains("sped_mps"), "{e}");
+        assert!(e.contains("line 4"), "{e}");
+        let e = toml::from_str::<Params>(
+            "[blend.alpha]\nkind = \"ramp\"\naxis = \"y\"\npower = 3\nfoo = 1\n",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("foo"), "{e}");
     }
 
@@ -428,15 +453,30 @@ mod tests {
         let mut p = Params::default();
         p.wind.speed_mps = -3.0;
         let e = p.validate().unwrap_err().to_string();
-        assert_eq!(e, "--wind-speed (wind.speed_mps) must be > 0 and ≤ 100 m/s (got -3)");
+        assert_eq!(
+            e,
+            "--wind-speed (wind.speed_mps) must be > 0 and ≤ 100 m/s (got -3)"
+        );
         let mut p = Params::default();
         p.grid.size = Size2([0, 16]);
-        assert!(p.validate().unwrap_err().to_string().contains("between 2 and"));
+        assert!(
+            p.validate()
+                .unwrap_err()
+                .to_string()
+                .contains("between 2 and")
+        );
         let mut p = Params::default();
         p.perlin.persistence = 1.0;
-        assert!(p.validate().unwrap_err().to_string().starts_with("perlin.persistence"));
-        let mut p = Params::default();
-        p.time_s = f64::NAN;
+        assert!(
+            p.validate()
+                .unwrap_err()
+                .to_string()
+                .starts_with("perlin.persistence")
+        );
+        let p = Params {
+            time_s: f64::NAN,
+            ..Params::default()
+        };
         assert!(p.validate().is_err());
         let mut p = Params::default();
         p.output.height_range = Some(Range2([1.0, -1.0]));

@@ -12,12 +12,24 @@ use crate::error::{Error, Result};
 /// Name and TOML text of every built-in preset.
 pub const BUILTIN: &[(&str, &str)] = &[
     ("li-tian", include_str!("../../presets/li-tian.toml")),
-    ("li-tian-fft", include_str!("../../presets/li-tian-fft.toml")),
-    ("li-tian-perlin", include_str!("../../presets/li-tian-perlin.toml")),
+    (
+        "li-tian-fft",
+        include_str!("../../presets/li-tian-fft.toml"),
+    ),
+    (
+        "li-tian-perlin",
+        include_str!("../../presets/li-tian-perlin.toml"),
+    ),
     ("li-tian-45", include_str!("../../presets/li-tian-45.toml")),
     ("li-tian-90", include_str!("../../presets/li-tian-90.toml")),
-    ("li-tian-135", include_str!("../../presets/li-tian-135.toml")),
-    ("tessendorf-usc", include_str!("../../presets/tessendorf-usc.toml")),
+    (
+        "li-tian-135",
+        include_str!("../../presets/li-tian-135.toml"),
+    ),
+    (
+        "tessendorf-usc",
+        include_str!("../../presets/tessendorf-usc.toml"),
+    ),
 ];
 
 /// The preset used when none is named.
@@ -41,7 +53,12 @@ pub fn parse_toml(source: &str, text: &str) -> Result<Params> {
     toml::from_str::<Params>(text).map_err(|e| {
         let line = e
             .span()
-            .map(|s| format!(":{}", text[..s.start.min(text.len())].matches('\n').count() + 1))
+            .map(|s| {
+                format!(
+                    ":{}",
+                    text[..s.start.min(text.len())].matches('\n').count() + 1
+                )
+            })
             .unwrap_or_default();
         Error::Preset(format!("{source}{line}: {}", one_line(e.message())))
     })
@@ -49,13 +66,20 @@ pub fn parse_toml(source: &str, text: &str) -> Result<Params> {
 
 /// Parses a JSON parameter file: a sidecar (its `params`) or a bare parameter object.
 pub fn parse_json(source: &str, text: &str) -> Result<Params> {
-    let bad = |e: serde_json::Error| Error::Preset(format!("{source}:{}: {}", e.line(), one_line(&e.to_string())));
+    let bad = |e: serde_json::Error| {
+        Error::Preset(format!(
+            "{source}:{}: {}",
+            e.line(),
+            one_line(&e.to_string())
+        ))
+    };
     let value: serde_json::Value = serde_json::from_str(text).map_err(bad)?;
     let params = match value.get("params") {
         Some(p) => p.clone(),
         None => value,
     };
-    serde_json::from_value(params).map_err(|e| Error::Preset(format!("{source}: {}", one_line(&e.to_string()))))
+    serde_json::from_value(params)
+        .map_err(|e| Error::Preset(format!("{source}: {}", one_line(&e.to_string()))))
 }
 
 fn one_line(s: &str) -> String {
@@ -94,7 +118,10 @@ mod tests {
         for (name, text) in BUILTIN {
             let p = parse_toml(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
             p.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert!(!description(text).is_empty(), "{name} needs a description comment");
+            assert!(
+                !description(text).is_empty(),
+                "{name} needs a description comment"
+            );
         }
     }
 
@@ -105,7 +132,12 @@ mod tests {
 
     #[test]
     fn unknown_key_error_names_key_and_line() {
-        let e = parse_toml("bad.toml", "seed = 1\n[perlin]\noctaves = 3\nocataves = 4\n").unwrap_err().to_string();
+        let e = parse_toml(
+            "bad.toml",
+            "seed = 1\n[perlin]\noctaves = 3\nocataves = 4\n",
+        )
+        .unwrap_err()
+        .to_string();
         assert!(e.starts_with("bad.toml:4: "), "{e}");
         assert!(e.contains("ocataves"), "{e}");
         assert!(!e.contains('\n'), "one line: {e}");
@@ -113,8 +145,10 @@ mod tests {
 
     #[test]
     fn a_sidecar_is_a_preset() {
-        let mut p = Params::default();
-        p.seed = 99;
+        let p = Params {
+            seed: 99,
+            ..Params::default()
+        };
         let side = serde_json::json!({ "tool": "seasynth", "params": p });
         assert_eq!(parse_json("x.json", &side.to_string()).unwrap(), p);
     }

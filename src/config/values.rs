@@ -24,7 +24,9 @@ where
         NumOrPair::Text(s) => {
             let parse = |t: &str| {
                 t.trim().parse::<T>().map_err(|_| {
-                    de::Error::custom(format!("invalid {what} `{s}`: expected a number or A{sep}B"))
+                    de::Error::custom(format!(
+                        "invalid {what} `{s}`: expected a number or A{sep}B"
+                    ))
                 })
             };
             match s.split_once(sep) {
@@ -92,7 +94,11 @@ impl<'de> Deserialize<'de> for Range2 {
         match R::deserialize(d)? {
             R::Two([a, b]) => Ok(Range2([a.0, b.0])),
             R::Text(s) => {
-                let bad = || de::Error::custom(format!("invalid height range `{s}`: expected MIN:MAX in meters"));
+                let bad = || {
+                    de::Error::custom(format!(
+                        "invalid height range `{s}`: expected MIN:MAX in meters"
+                    ))
+                };
                 let (a, b) = s.split_once(':').ok_or_else(bad)?;
                 let a = a.trim().parse::<f64>().map_err(|_| bad())?;
                 let b = b.trim().parse::<f64>().map_err(|_| bad())?;

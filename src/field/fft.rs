@@ -45,7 +45,8 @@ pub fn signed_index(idx: usize, len: usize) -> i64 {
 pub fn is_resolved(n: i64, m: i64, nx: usize, ny: usize) -> bool {
     let nyquist_x = nx % 2 == 0 && n.unsigned_abs() as usize == nx / 2;
     let nyquist_y = ny % 2 == 0 && m.unsigned_abs() as usize == ny / 2;
-    !(n == 0 && m == 0) && !nyquist_x && !nyquist_y
+    let dc = n == 0 && m == 0;
+    !(dc || nyquist_x || nyquist_y)
 }
 
 /// Everything that fixes the random spectrum of one field.
@@ -198,12 +199,10 @@ impl InverseFft2 {
         let nh = nx / 2 + 1;
         // 1. inverse FFT along y of every kx line.
         let scratch_len = self.columns.get_inplace_scratch_len();
-        half.data
-            .par_chunks_mut(ny * LINES_PER_TASK)
-            .for_each_init(
-                || vec![Complex32::new(0.0, 0.0); scratch_len],
-                |scratch, chunk| self.columns.process_with_scratch(chunk, scratch),
-            );
+        half.data.par_chunks_mut(ny * LINES_PER_TASK).for_each_init(
+            || vec![Complex32::new(0.0, 0.0); scratch_len],
+            |scratch, chunk| self.columns.process_with_scratch(chunk, scratch),
+        );
         // 2. transpose to rows of constant y.
         let mut rows = vec![Complex32::new(0.0, 0.0); ny * nh];
         let src = &half.data;
@@ -270,7 +269,12 @@ mod tests {
         }
     }
 
-    fn phillips_setup(spec: GridSpec, spectrum: &Phillips, seed: u64, time_s: f64) -> SpectrumSetup<'_> {
+    fn phillips_setup(
+        spec: GridSpec,
+        spectrum: &Phillips,
+        seed: u64,
+        time_s: f64,
+    ) -> SpectrumSetup<'_> {
         SpectrumSetup {
             spec,
             spectrum,
@@ -316,7 +320,11 @@ mod tests {
             let scale = naive.iter().map(|c| c.re.abs()).fold(0.0, f64::max);
             assert!(scale > 0.0);
             for (idx, (a, b)) in naive.iter().zip(&fast.data).enumerate() {
-                assert!(a.im.abs() <= TOL * scale, "{nx}x{ny}: imaginary part {} at {idx}", a.im);
+                assert!(
+                    a.im.abs() <= TOL * scale,
+                    "{nx}x{ny}: imaginary part {} at {idx}",
+                    a.im
+                );
                 assert!(
                     (a.re - *b as f64).abs() <= TOL * scale,
                     "{nx}x{ny}: sample {idx}: naive {} fast {}",
@@ -339,8 +347,14 @@ mod tests {
         let n = field.len() as f64;
         let mean = field.iter().map(|&v| v as f64).sum::<f64>() / n;
         let ms = field.iter().map(|&v| (v as f64) * (v as f64)).sum::<f64>() / n;
-        assert!(mean.abs() < 1e-5 * ms.sqrt(), "mean {mean} should vanish (no k = 0)");
-        assert!((ms - power).abs() <= REL_TOL * power, "variance {ms} vs Σ|h̃|² {power}");
+        assert!(
+            mean.abs() < 1e-5 * ms.sqrt(),
+            "mean {mean} should vanish (no k = 0)"
+        );
+        assert!(
+            (ms - power).abs() <= REL_TOL * power,
+            "variance {ms} vs Σ|h̃|² {power}"
+        );
     }
 
     #[test]
@@ -431,7 +445,10 @@ mod tests {
             let h = at(x, y);
             assert!((at(x + 20.0, y) - h).abs() < TOL, "x-period at ({x},{y})");
             assert!((at(x, y + 15.0) - h).abs() < TOL, "y-period at ({x},{y})");
-            assert!((at(x + 20.0, y - 30.0) - h).abs() < TOL, "both at ({x},{y})");
+            assert!(
+                (at(x + 20.0, y - 30.0) - h).abs() < TOL,
+                "both at ({x},{y})"
+            );
         }
     }
 
@@ -482,7 +499,11 @@ mod tests {
     }
 
     fn is_resolved_in(n: i64, m: i64, size: i64) -> bool {
-        n >= -size / 2 && n < size / 2 && m >= -size / 2 && m < size / 2 && is_resolved(n, m, size as usize, size as usize)
+        n >= -size / 2
+            && n < size / 2
+            && m >= -size / 2
+            && m < size / 2
+            && is_resolved(n, m, size as usize, size as usize)
     }
 
     #[test]
@@ -514,6 +535,9 @@ mod tests {
                 .unwrap()
                 .install(|| fft_field(&phillips_setup(spec, &ph, 77, 3.0)).0)
         };
-        assert!(run(1).data == run(2).data, "bit-identical across thread counts");
+        assert!(
+            run(1).data == run(2).data,
+            "bit-identical across thread counts"
+        );
     }
 }

@@ -53,7 +53,14 @@ mod tests {
     #[test]
     fn ramp_blend_mixes_per_row() {
         let (f, p) = fields();
-        let alpha = AlphaMap::new(&AlphaConfig::Ramp { axis: Axis::Y, power: 1.0 }, &f.spec).unwrap();
+        let alpha = AlphaMap::new(
+            &AlphaConfig::Ramp {
+                axis: Axis::Y,
+                power: 1.0,
+            },
+            &f.spec,
+        )
+        .unwrap();
         let mut g = f.clone();
         blend_in_place(&mut g, &p, &alpha, 2.0);
         for j in 0..4 {

@@ -101,7 +101,11 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
                 Beta::Paper => info.h0max_m.unwrap_or(0.0),
                 Beta::Matched => {
                     let pstd = Grid::new(spec, p.clone()).stats().std_m;
-                    if pstd > 0.0 { f.stats().std_m / pstd } else { 0.0 }
+                    if pstd > 0.0 {
+                        f.stats().std_m / pstd
+                    } else {
+                        0.0
+                    }
                 }
                 Beta::Meters(b) => b,
             } * params.blend.beta_scale;

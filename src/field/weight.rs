@@ -10,7 +10,10 @@ use crate::grid::GridSpec;
 pub enum AlphaMap {
     Constant(f32),
     /// α = 1 − (c/L)^power along one axis; `values` indexed by that axis' sample index.
-    Ramp { axis: Axis, values: Vec<f32> },
+    Ramp {
+        axis: Axis,
+        values: Vec<f32>,
+    },
     Radial {
         spec: GridSpec,
         center_m: [f64; 2],
@@ -18,7 +21,10 @@ pub enum AlphaMap {
         power: f64,
     },
     /// Row-major samples, already resampled to the grid.
-    Sampled { nx: usize, values: Vec<f32> },
+    Sampled {
+        nx: usize,
+        values: Vec<f32>,
+    },
 }
 
 impl AlphaMap {
@@ -34,7 +40,10 @@ impl AlphaMap {
                 let values = (0..n)
                     .map(|i| (1.0 - (i as f64 * step / l).powf(*power)) as f32)
                     .collect();
-                AlphaMap::Ramp { axis: *axis, values }
+                AlphaMap::Ramp {
+                    axis: *axis,
+                    values,
+                }
             }
             AlphaConfig::Radial {
                 power,
@@ -57,8 +66,14 @@ impl AlphaMap {
     pub fn row(&self, j: usize, out: &mut [f32]) {
         match self {
             AlphaMap::Constant(v) => out.fill(*v),
-            AlphaMap::Ramp { axis: Axis::Y, values } => out.fill(values[j]),
-            AlphaMap::Ramp { axis: Axis::X, values } => out.copy_from_slice(values),
+            AlphaMap::Ramp {
+                axis: Axis::Y,
+                values,
+            } => out.fill(values[j]),
+            AlphaMap::Ramp {
+                axis: Axis::X,
+                values,
+            } => out.copy_from_slice(values),
             AlphaMap::Radial {
                 spec,
                 center_m,
@@ -171,15 +186,32 @@ mod tests {
     #[test]
     fn ramp_edges_and_corners_follow_the_formula() {
         let spec = GridSpec::new(8, 16, 80.0, 160.0);
-        let m = AlphaMap::new(&AlphaConfig::Ramp { axis: Axis::Y, power: 3.0 }, &spec).unwrap();
+        let m = AlphaMap::new(
+            &AlphaConfig::Ramp {
+                axis: Axis::Y,
+                power: 3.0,
+            },
+            &spec,
+        )
+        .unwrap();
         assert_eq!(row(&m, 0, 8), vec![1.0; 8], "α = 1 at y = 0");
         let last = 1.0 - (15.0f64 / 16.0).powi(3);
         for (i, v) in row(&m, 15, 8).iter().enumerate() {
-            assert!((v - last as f32).abs() < TOL, "last row, column {i}: {v} vs {last}");
+            assert!(
+                (v - last as f32).abs() < TOL,
+                "last row, column {i}: {v} vs {last}"
+            );
         }
         let mid = 1.0 - 0.5f64.powi(3);
         assert!((row(&m, 8, 8)[3] - mid as f32).abs() < TOL);
-        let mx = AlphaMap::new(&AlphaConfig::Ramp { axis: Axis::X, power: 2.0 }, &spec).unwrap();
+        let mx = AlphaMap::new(
+            &AlphaConfig::Ramp {
+                axis: Axis::X,
+                power: 2.0,
+            },
+            &spec,
+        )
+        .unwrap();
         let r = row(&mx, 5, 8);
         assert_eq!(r[0], 1.0);
         assert!((r[7] - (1.0 - (7.0f32 / 8.0).powi(2))).abs() < TOL);

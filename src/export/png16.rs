@@ -1,0 +1,107 @@
+//! 16-bit grayscale PNG. Samples are big-endian as PNG requires; heights map to 0..65535 by
+//! the [`HeightMapping`] (recorded in the sidecar and in a `tEXt` chunk). Written with the
+//! png crate's fast deflate and the Up filter: ~3× faster than its default settings for a
+//! file ~13 % larger.
+
+use std::io::Write;
+
+use rayon::prelude::*;
+
+use super::HeightMapping;
+use crate::grid::Grid;
+
+/// Encodes `grid` as a 16-bit grayscale PNG.
+pub fn write<W: Write>(w: W, grid: &Grid, mapping: &HeightMapping) -> std::io::Result<()> {
+    let (nx, ny) = (grid.spec.nx, grid.spec.ny);
+    let mut bytes = vec![0u8; nx * ny * 2];
+    bytes
+        .par_chunks_mut(nx * 2)
+        .zip(grid.data.par_chunks(nx))
+        .for_each(|(out, row)| {
+            for (o, &h) in out.chunks_exact_mut(2).zip(row) {
+                o.copy_from_slice(&mapping.encode(h).to_be_bytes());
+            }
+        });
+    let mut enc = png::Encoder::new(w, nx as u32, ny as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Sixteen);
+    enc.set_compression(png::Compression::Fast);
+    enc.set_filter(png::Filter::Up);
+    enc.add_text_chunk(
+        "Description".into(),
+        format!(
+            "seasynth height map: meters = {} + value * {} (0..65535); row 0 is y = 0",
+            mapping.min_m,
+            mapping.step_m()
+        ),
+    )
+    .map_err(std::io::Error::other)?;
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(&bytes)
+        .map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
+/// Reads a 16-bit grayscale PNG: (width, height, samples row by row).
+pub fn read(path: &std::path::Path) -> std::io::Result<(usize, usize, Vec<u16>)> {
+    let file = std::io::BufReader::new(std::fs::File::open(path)?);
+    let mut reader = png::Decoder::new(file)
+        .read_info()
+        .map_err(std::io::Error::other)?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| std::io::Error::other("PNG too large"))?;
+    let mut buf = vec![0u8; size];
+    let info = reader.next_frame(&mut buf).map_err(std::io::Error::other)?;
+    if info.bit_depth != png::BitDepth::Sixteen || info.color_type != png::ColorType::Grayscale {
+        return Err(std::io::Error::other(format!(
+            "expected 16-bit grayscale, found {:?} {:?}",
+            info.bit_depth, info.color_type
+        )));
+    }
+    let values = buf[..info.buffer_size()]
+        .chunks_exact(2)
+        .map(|b| u16::from_be_bytes([b[0], b[1]]))
+        .collect();
+    Ok((info.width as usize, info.height as usize, values))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::GridSpec;
+
+    #[test]
+    fn reads_back_within_one_step_of_the_mapping() {
+        let spec = GridSpec::new(37, 11, 1.0, 1.0);
+        let g = Grid::new(
+            spec,
+            (0..37 * 11)
+                .map(|v| ((v as f32) * 0.1).sin() * 2.5)
+                .collect(),
+        );
+        let st = g.stats();
+        let m = HeightMapping {
+            min_m: st.min_m,
+            max_m: st.max_m,
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.png");
+        write(std::fs::File::create(&path).unwrap(), &g, &m).unwrap();
+        let (w, h, v) = read(&path).unwrap();
+        assert_eq!((w, h), (37, 11));
+        assert!(
+            v.contains(&0) && v.contains(&65535),
+            "min..max spans the range"
+        );
+        for (idx, (&raw, &want)) in v.iter().zip(&g.data).enumerate() {
+            let err = (m.decode(raw) - want as f64).abs();
+            assert!(
+                err <= m.step_m(),
+                "sample {idx}: error {err} over one step {}",
+                m.step_m()
+            );
+        }
+    }
+}

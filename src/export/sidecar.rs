@@ -1,0 +1,106 @@
+//! The JSON sidecar written beside every output (`NAME.json` for `NAME.png`, `NAME.tif`):
+//! the fully resolved parameters (give the file back as `--preset NAME.json` to regenerate
+//! the outputs bit for bit), the seed, the version, the 16-bit mapping and statistics.
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use super::{Format, HeightMapping};
+use crate::config::Params;
+use crate::field::SynthesisInfo;
+use crate::grid::{GridSpec, Stats};
+
+/// The grid as written: how samples map to meters.
+#[derive(Debug, Serialize)]
+pub struct GridInfo {
+    pub nx: usize,
+    pub ny: usize,
+    pub dx_m: f64,
+    pub dy_m: f64,
+    pub extent_m: [f64; 2],
+    /// Where sample (i, j) sits and how rows are stored.
+    pub layout: &'static str,
+}
+
+impl From<&GridSpec> for GridInfo {
+    fn from(s: &GridSpec) -> Self {
+        Self {
+            nx: s.nx,
+            ny: s.ny,
+            dx_m: s.dx_m(),
+            dy_m: s.dy_m(),
+            extent_m: [s.extent_x_m, s.extent_y_m],
+            layout: "sample (i, j) at x = i*dx_m, y = j*dy_m; image row j is y_j, row 0 first",
+        }
+    }
+}
+
+#[derive(Debug, Serialize)]
+pub struct FileEntry {
+    pub file: String,
+    pub format: Format,
+}
+
+/// The 16-bit mapping as recorded.
+#[derive(Debug, Serialize)]
+pub struct MappingInfo {
+    #[serde(flatten)]
+    pub range: HeightMapping,
+    pub step_m: f64,
+    pub formula: &'static str,
+    /// Where the range came from: the field's min..max, or `--height-range`.
+    pub source: &'static str,
+}
+
+#[derive(Debug, Serialize)]
+pub struct Sidecar<'a> {
+    pub tool: &'static str,
+    pub version: &'static str,
+    pub seed: u64,
+    pub files: Vec<FileEntry>,
+    pub grid: GridInfo,
+    pub stats: Stats,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mapping: Option<MappingInfo>,
+    pub synthesis: &'a SynthesisInfo,
+    pub params: &'a Params,
+}
+
+pub const FORMULA: &str =
+    "value = round((h - min_m) / (max_m - min_m) * 65535), clamped to 0..65535";
+
+impl<'a> Sidecar<'a> {
+    pub fn new(params: &'a Params, info: &'a SynthesisInfo, stats: Stats) -> Self {
+        Self {
+            tool: "seasynth",
+            version: env!("CARGO_PKG_VERSION"),
+            seed: params.seed,
+            files: Vec::new(),
+            grid: GridInfo::from(&params.grid_spec()),
+            stats,
+            mapping: None,
+            synthesis: info,
+            params,
+        }
+    }
+}
+
+/// The sidecar path of an output: same folder and stem, `.json`.
+pub fn path_for(output: &Path) -> PathBuf {
+    output.with_extension("json")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sidecar_paths_share_the_stem() {
+        assert_eq!(
+            path_for(Path::new("out/a.png")),
+            PathBuf::from("out/a.json")
+        );
+        assert_eq!(path_for(Path::new("a.b.tif")), PathBuf::from("a.b.json"));
+    }
+}
