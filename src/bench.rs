@@ -1,3 +1,155 @@
-pub fn run(_a: crate::cli::BenchArgs) -> anyhow::Result<()> {
+//! `seasynth bench`: times each stage of the default job at a few sizes and reports each
+//! as a ratio to a bare 2D real inverse FFT of the same size on the same machine, which
+//! makes figures comparable across busy or different machines.
+
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result};
+use rayon::prelude::*;
+use realfft::RealFftPlanner;
+use rustfft::FftPlanner;
+use rustfft::num_complex::Complex32;
+
+use crate::cli::BenchArgs;
+use crate::config::Params;
+use crate::export::{HeightMapping, Output};
+use crate::field::{self, fft, hybrid, perlin, weight};
+use crate::grid::GridSpec;
+use crate::rng::{Stream, sub_seed};
+use crate::spectrum::Dispersion;
+
+fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort();
+    v[v.len() / 2]
+}
+
+fn time<T>(repeats: usize, mut f: impl FnMut() -> T) -> Duration {
+    median(
+        (0..repeats)
+            .map(|_| {
+                let t = Instant::now();
+                std::hint::black_box(f());
+                t.elapsed()
+            })
+            .collect(),
+    )
+}
+
+/// The bare transform: rustfft inverse along y of the nx/2+1 kx lines, then realfft's
+/// complex-to-real inverse along x of every row, on ready buffers and without the
+/// transpose between them — the least work any 2D real inverse FFT does.
+fn bare_fft(nx: usize, ny: usize, repeats: usize) -> Duration {
+    let nh = nx / 2 + 1;
+    let col = FftPlanner::<f32>::new().plan_fft_inverse(ny);
+    let row = RealFftPlanner::<f32>::new().plan_fft_inverse(nx);
+    let mut lines = vec![Complex32::new(0.0, 0.0); nh * ny];
+    let mut rows = vec![Complex32::new(0.0, 0.0); nh * ny];
+    let mut out = vec![0.0f32; nx * ny];
+    time(repeats, || {
+        lines.par_chunks_mut(ny * 8).for_each_init(
+            || vec![Complex32::new(0.0, 0.0); col.get_inplace_scratch_len()],
+            |s, c| col.process_with_scratch(c, s),
+        );
+        rows.par_chunks_mut(nh)
+            .zip(out.par_chunks_mut(nx))
+            .for_each_init(
+                || vec![Complex32::new(0.0, 0.0); row.get_scratch_len()],
+                |s, (i, o)| {
+                    i[0].im = 0.0;
+                    i[nh - 1].im = 0.0;
+                    row.process_with_scratch(i, o, s).expect("lengths from the plan");
+                },
+            );
+    })
+}
+
+pub fn run(args: BenchArgs) -> Result<()> {
+    crate::app::set_threads(args.threads)?;
+    std::fs::create_dir_all(&args.dir).with_context(|| format!("cannot create {}", args.dir.display()))?;
+    let repeats = args.repeats.max(1);
+    println!(
+        "seasynth bench: medians of {repeats} runs, {} threads; ratio = stage time / bare 2D real inverse FFT",
+        rayon::current_num_threads()
+    );
+    for &n in &args.sizes {
+        let params = Params {
+            grid: crate::config::GridParams {
+                size: crate::config::Size2([n, n]),
+                extent_m: crate::config::Extent2([n as f64, n as f64]),
+            },
+            ..Params::default()
+        };
+        let spec: GridSpec = params.grid_spec();
+        let model = field::phillips(&params);
+        let setup = fft::SpectrumSetup {
+            spec,
+            spectrum: &model,
+            dispersion: Dispersion::Deep,
+            seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
+            time_s: 0.0,
+        };
+        let bare = bare_fft(n, n, repeats);
+        let mut rows: Vec<(&str, Duration)> = Vec::new();
+        rows.push(("spectrum h̃(k,0)", time(repeats, || fft::synthesize_spectrum(&setup))));
+        let timed_setup = fft::SpectrumSetup { time_s: 10.0, ..setup };
+        rows.push(("spectrum h̃(k,t), t ≠ 0", time(repeats, || fft::synthesize_spectrum(&timed_setup))));
+        let plan = fft::InverseFft2::new(n, n);
+        let template = fft::synthesize_spectrum(&setup);
+        let fft_time = median(
+            (0..repeats)
+                .map(|_| {
+                    let mut half = fft::HalfSpectrum {
+                        data: template.data.clone(),
+                        ..template
+                    };
+                    let t = Instant::now();
+                    std::hint::black_box(plan.process(&mut half));
+                    t.elapsed()
+                })
+                .collect(),
+        );
+        rows.push(("inverse FFT (with transpose)", fft_time));
+        let pp = field::perlin_params(&params);
+        rows.push(("Perlin, 6 octaves", time(repeats, || perlin::perlin_field(&spec, &pp))));
+        let alpha = weight::AlphaMap::new(&params.blend.alpha, &spec)?;
+        let synthesis = field::synthesize(&params)?;
+        let noise = perlin::perlin_field(&spec, &pp);
+        let mut grid = synthesis.grid.clone();
+        rows.push((
+            "blend",
+            time(repeats, || hybrid::blend_in_place(&mut grid, &noise, &alpha, 0.1)),
+        ));
+        rows.push(("statistics", time(repeats, || synthesis.grid.stats())));
+        let st = synthesis.grid.stats();
+        let mapping = HeightMapping {
+            min_m: st.min_m,
+            max_m: st.max_m,
+        };
+        let mut sizes = Vec::new();
+        for ext in ["png", "tif"] {
+            let path = args.dir.join(format!("bench-{n}.{ext}"));
+            let t = time(repeats, || {
+                Output::prepare(&path)
+                    .and_then(|o| o.write(&synthesis.grid, &mapping))
+                    .expect("bench output is writable")
+            });
+            sizes.push((ext, std::fs::metadata(&path)?.len()));
+            rows.push((if ext == "png" { "PNG 16-bit writer" } else { "TIFF f32 writer" }, t));
+        }
+        rows.push(("whole synthesis (hybrid)", time(repeats, || field::synthesize(&params))));
+        println!("\n{n}×{n}: bare 2D real inverse FFT {:.1} ms", bare.as_secs_f64() * 1e3);
+        println!("  {:<30} {:>10} {:>8}", "stage", "ms", "ratio");
+        for (name, d) in rows {
+            println!(
+                "  {:<30} {:>10.1} {:>8.2}",
+                name,
+                d.as_secs_f64() * 1e3,
+                d.as_secs_f64() / bare.as_secs_f64()
+            );
+        }
+        for (ext, bytes) in sizes {
+            println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
+        }
+    }
     Ok(())
 }
