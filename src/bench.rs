@@ -57,7 +57,8 @@ fn bare_fft(nx: usize, ny: usize, repeats: usize) -> Duration {
                 |s, (i, o)| {
                     i[0].im = 0.0;
                     i[nh - 1].im = 0.0;
-                    row.process_with_scratch(i, o, s).expect("lengths from the plan");
+                    row.process_with_scratch(i, o, s)
+                        .expect("lengths from the plan");
                 },
             );
     })
@@ -65,7 +66,8 @@ fn bare_fft(nx: usize, ny: usize, repeats: usize) -> Duration {
 
 pub fn run(args: BenchArgs) -> Result<()> {
     crate::app::set_threads(args.threads)?;
-    std::fs::create_dir_all(&args.dir).with_context(|| format!("cannot create {}", args.dir.display()))?;
+    std::fs::create_dir_all(&args.dir)
+        .with_context(|| format!("cannot create {}", args.dir.display()))?;
     let repeats = args.repeats.max(1);
     println!(
         "seasynth bench: medians of {repeats} runs, {} threads; ratio = stage time / bare 2D real inverse FFT",
@@ -90,34 +92,48 @@ pub fn run(args: BenchArgs) -> Result<()> {
         };
         let bare = bare_fft(n, n, repeats);
         let mut rows: Vec<(&str, Duration)> = Vec::new();
-        rows.push(("spectrum h̃(k,0)", time(repeats, || fft::synthesize_spectrum(&setup))));
-        let timed_setup = fft::SpectrumSetup { time_s: 10.0, ..setup };
-        rows.push(("spectrum h̃(k,t), t ≠ 0", time(repeats, || fft::synthesize_spectrum(&timed_setup))));
+        rows.push((
+            "spectrum h̃(k,0)",
+            time(repeats, || fft::synthesize_spectrum(&setup)),
+        ));
+        let timed_setup = fft::SpectrumSetup {
+            time_s: 10.0,
+            ..setup
+        };
+        rows.push((
+            "spectrum h̃(k,t), t ≠ 0",
+            time(repeats, || fft::synthesize_spectrum(&timed_setup)),
+        ));
         let plan = fft::InverseFft2::new(n, n);
         let template = fft::synthesize_spectrum(&setup);
         let fft_time = median(
             (0..repeats)
                 .map(|_| {
-                    let mut half = fft::HalfSpectrum {
+                    let half = fft::HalfSpectrum {
                         data: template.data.clone(),
                         ..template
                     };
                     let t = Instant::now();
-                    std::hint::black_box(plan.process(&mut half));
+                    std::hint::black_box(plan.process(half));
                     t.elapsed()
                 })
                 .collect(),
         );
         rows.push(("inverse FFT (with transpose)", fft_time));
         let pp = field::perlin_params(&params);
-        rows.push(("Perlin, 6 octaves", time(repeats, || perlin::perlin_field(&spec, &pp))));
+        rows.push((
+            "Perlin, 6 octaves",
+            time(repeats, || perlin::perlin_field(&spec, &pp)),
+        ));
         let alpha = weight::AlphaMap::new(&params.blend.alpha, &spec)?;
         let synthesis = field::synthesize(&params)?;
         let noise = perlin::perlin_field(&spec, &pp);
         let mut grid = synthesis.grid.clone();
         rows.push((
             "blend",
-            time(repeats, || hybrid::blend_in_place(&mut grid, &noise, &alpha, 0.1)),
+            time(repeats, || {
+                hybrid::blend_in_place(&mut grid, &noise, &alpha, 0.1)
+            }),
         ));
         rows.push(("statistics", time(repeats, || synthesis.grid.stats())));
         let st = synthesis.grid.stats();
@@ -134,10 +150,23 @@ pub fn run(args: BenchArgs) -> Result<()> {
                     .expect("bench output is writable")
             });
             sizes.push((ext, std::fs::metadata(&path)?.len()));
-            rows.push((if ext == "png" { "PNG 16-bit writer" } else { "TIFF f32 writer" }, t));
+            rows.push((
+                if ext == "png" {
+                    "PNG 16-bit writer"
+                } else {
+                    "TIFF f32 writer"
+                },
+                t,
+            ));
         }
-        rows.push(("whole synthesis (hybrid)", time(repeats, || field::synthesize(&params))));
-        println!("\n{n}×{n}: bare 2D real inverse FFT {:.1} ms", bare.as_secs_f64() * 1e3);
+        rows.push((
+            "whole synthesis (hybrid)",
+            time(repeats, || field::synthesize(&params)),
+        ));
+        println!(
+            "\n{n}×{n}: bare 2D real inverse FFT {:.1} ms",
+            bare.as_secs_f64() * 1e3
+        );
         println!("  {:<30} {:>10} {:>8}", "stage", "ms", "ratio");
         for (name, d) in rows {
             println!(

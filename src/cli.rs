@@ -46,10 +46,10 @@ pub struct FieldArgs {
     #[arg(long)]
     pub spectrum: Option<String>,
     /// Samples: N (square) or NxM
-    #[arg(long, value_name = "N|NxM")]
+    #[arg(long, value_name = "N|NxM", allow_hyphen_values = true)]
     pub size: Option<String>,
     /// Extent in meters: L (square) or LXxLY
-    #[arg(long, value_name = "L|LXxLY")]
+    #[arg(long, value_name = "L|LXxLY", allow_hyphen_values = true)]
     pub extent: Option<String>,
     /// Wind speed, m/s
     #[arg(long, value_name = "MPS", allow_hyphen_values = true)]

@@ -372,8 +372,12 @@ impl Params {
                 }
             }
             AlphaConfig::Image { path } => {
-                if path.as_os_str().is_empty() {
-                    return Err(err("blend.alpha.path", "a PNG file", "an empty path"));
+                if !path.is_file() {
+                    return Err(err(
+                        "blend.alpha.path",
+                        "an existing PNG file",
+                        path.display(),
+                    ));
                 }
             }
         }

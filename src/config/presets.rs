@@ -50,18 +50,37 @@ pub fn description(text: &str) -> &str {
 
 /// Parses TOML preset text; errors name the source, the line and the key.
 pub fn parse_toml(source: &str, text: &str) -> Result<Params> {
-    toml::from_str::<Params>(text).map_err(|e| {
-        let line = e
-            .span()
-            .map(|s| {
-                format!(
-                    ":{}",
-                    text[..s.start.min(text.len())].matches('\n').count() + 1
-                )
-            })
-            .unwrap_or_default();
+    let params = toml::from_str::<Params>(text).map_err(|e| {
+        let line = e.span().map(|s| key_line(text, s.start, e.message()));
+        let line = line.map(|l| format!(":{l}")).unwrap_or_default();
         Error::Preset(format!("{source}{line}: {}", one_line(e.message())))
-    })
+    })?;
+    params
+        .validate()
+        .map_err(|e| Error::Preset(format!("{source}: {e}")))?;
+    Ok(params)
+}
+
+/// The line of an error at byte `start`. For an unknown field inside a table that serde
+/// buffers (a tagged enum such as `[blend.alpha]`), the span is the table's; the line
+/// of the key itself is then the first line from there that assigns it.
+fn key_line(text: &str, start: usize, message: &str) -> usize {
+    let start = start.min(text.len());
+    let line = text[..start].matches('\n').count() + 1;
+    let field = message
+        .strip_prefix("unknown field `")
+        .and_then(|rest| rest.split('`').next());
+    if let Some(field) = field {
+        for (i, l) in text.lines().enumerate().skip(line - 1) {
+            let l = l.trim_start();
+            if let Some(rest) = l.strip_prefix(field) {
+                if rest.trim_start().starts_with('=') {
+                    return i + 1;
+                }
+            }
+        }
+    }
+    line
 }
 
 /// Parses a JSON parameter file: a sidecar (its `params`) or a bare parameter object.
