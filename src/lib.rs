@@ -6,6 +6,7 @@ pub mod cli;
 pub mod config;
 pub mod error;
 pub mod export;
+pub mod fastmath;
 pub mod field;
 pub mod grid;
 pub mod rng;

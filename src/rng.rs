@@ -5,7 +5,10 @@
 //! not depend on the grid size or on the order in which wavevectors are visited, so the same
 //! seed over the same extent gives the same long waves at every resolution, and results
 //! do not depend on threads. The hash is SplitMix64's finalizer applied to a combination
-//! of the key words; it is fixed here and portable (integer arithmetic only).
+//! of the key words; it is fixed here and portable (integer arithmetic only), and the
+//! Gaussian transform uses [`crate::fastmath`], so draws are the same on every platform.
+
+use crate::fastmath;
 
 /// Streams keep the draws of different uses of one seed apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,7 +21,7 @@ pub enum Stream {
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer.
-#[inline]
+#[inline(always)]
 pub fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
@@ -26,7 +29,7 @@ pub fn mix64(mut z: u64) -> u64 {
 }
 
 /// Hash of a key of several words, each step a full avalanche.
-#[inline]
+#[inline(always)]
 pub fn hash_words(words: &[u64]) -> u64 {
     let mut h = 0x9e37_79b9_7f4a_7c15u64;
     for &w in words {
@@ -46,15 +49,25 @@ fn unit_open0(bits: u64) -> f64 {
     ((bits >> 11) + 1) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// Two independent standard normal numbers for the integer wavevector `(n, m)`,
-/// by the Box–Muller transform of two hashed uniforms.
-#[inline]
-pub fn gaussian_pair(seed: u64, n: i64, m: i64) -> (f64, f64) {
+/// A standard complex Gaussian ξr + iξi (each part N(0, 1)) for the integer wavevector
+/// `(n, m)`, in polar form (r, φ): r = √(−2 ln u1) is Rayleigh distributed and φ = 2π·u2
+/// uniform, from two hashed uniforms (the Box–Muller transform).
+#[inline(always)]
+pub fn gaussian_polar(seed: u64, n: i64, m: i64) -> (f64, f64) {
     let key = hash_words(&[seed, n as u64, m as u64]);
     let u1 = unit_open0(mix64(key ^ 0x1));
     let u2 = unit_open0(mix64(key ^ 0x2));
-    let r = (-2.0 * u1.ln()).sqrt();
-    let (s, c) = (2.0 * std::f64::consts::PI * u2).sin_cos();
+    (
+        (-2.0 * fastmath::ln(u1)).sqrt(),
+        2.0 * std::f64::consts::PI * u2,
+    )
+}
+
+/// The same draw as [`gaussian_polar`] as the pair (ξr, ξi).
+#[inline]
+pub fn gaussian_pair(seed: u64, n: i64, m: i64) -> (f64, f64) {
+    let (r, phi) = gaussian_polar(seed, n, m);
+    let (s, c) = fastmath::sin_cos(phi);
     (r * c, r * s)
 }
 

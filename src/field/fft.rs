@@ -26,8 +26,9 @@ use realfft::{ComplexToReal, RealFftPlanner};
 use rustfft::num_complex::{Complex, Complex32};
 use rustfft::{Fft, FftPlanner};
 
+use crate::fastmath;
 use crate::grid::{Grid, GridSpec};
-use crate::rng::gaussian_pair;
+use crate::rng::gaussian_polar;
 use crate::spectrum::{Dispersion, Spectrum};
 
 /// Signed wavevector index of FFT bin `idx` of a transform of length `len`.
@@ -75,35 +76,57 @@ impl SpectrumSetup<'_> {
         self.wavevector(1, 1)
     }
 
-    /// h̃0 at indices `(n, m)`.
+    /// ρ = √(p/2)·r and the phase φ of h̃0 = ρ·e^{iφ} at indices `(n, m)`, given
+    /// p = E|h̃0|² there.
     #[inline]
-    pub fn h0(&self, n: i64, m: i64) -> Complex<f64> {
-        let (kx, ky) = self.wavevector(n, m);
-        let (dkx, dky) = self.dk();
-        let p = self.spectrum.amplitude_variance(kx, ky, dkx, dky);
+    fn polar_from(&self, p: f64, n: i64, m: i64) -> (f64, f64) {
         if p <= 0.0 {
-            return Complex::new(0.0, 0.0);
+            return (0.0, 0.0);
         }
-        let (xr, xi) = gaussian_pair(self.seed, n, m);
-        let s = (p * 0.5).sqrt();
-        Complex::new(xr * s, xi * s)
+        let (r, phi) = gaussian_polar(self.seed, n, m);
+        ((p * 0.5).sqrt() * r, phi)
     }
 
-    /// h̃(k, t) at indices `(n, m)`, and max(|h̃0(k)|², |h̃0(−k)|²).
-    #[inline]
-    pub fn amplitude(&self, n: i64, m: i64) -> (Complex<f64>, f64) {
-        let a = self.h0(n, m);
-        let b = self.h0(-n, -m).conj();
-        let peak = a.norm_sqr().max(b.norm_sqr());
-        if self.time_s == 0.0 {
-            return (a + b, peak);
-        }
+    fn h0_polar(&self, n: i64, m: i64) -> (f64, f64) {
         let (kx, ky) = self.wavevector(n, m);
-        let w = self.dispersion.omega((kx * kx + ky * ky).sqrt());
-        let (s, c) = (w * self.time_s).sin_cos();
-        let e = Complex::new(c, -s);
-        (a * e + b * e.conj(), peak)
+        let (dkx, dky) = self.dk();
+        self.polar_from(self.spectrum.amplitude_variance(kx, ky, dkx, dky), n, m)
     }
+
+    /// ω(k)·t.
+    #[inline]
+    fn omega_t(&self, kx: f64, ky: f64) -> f64 {
+        if self.time_s == 0.0 {
+            0.0
+        } else {
+            self.dispersion.omega((kx * kx + ky * ky).sqrt()) * self.time_s
+        }
+    }
+
+    /// h̃0 at indices `(n, m)`: (ξr + iξi)/√2·√P(k).
+    pub fn h0(&self, n: i64, m: i64) -> Complex<f64> {
+        let (rho, phi) = self.h0_polar(n, m);
+        Complex::from_polar(rho, phi)
+    }
+
+    /// h̃(k, t) at indices `(n, m)`, and max(|h̃0(k)|², |h̃0(−k)|²), one wavevector at a
+    /// time (the reference for [`synthesize_spectrum`]).
+    pub fn amplitude(&self, n: i64, m: i64) -> (Complex<f64>, f64) {
+        let (ra, pa) = self.h0_polar(n, m);
+        let (rb, pb) = self.h0_polar(-n, -m);
+        let (kx, ky) = self.wavevector(n, m);
+        combine(ra, pa, rb, pb, self.omega_t(kx, ky))
+    }
+}
+
+/// With h̃0(k) = ρa·e^{iφa} and h̃0(−k) = ρb·e^{iφb}: h̃(k, t) = ρa·e^{i(φa − ωt)} +
+/// ρb·e^{−i(φb − ωt)} (one sine and cosine per term), and max(ρa², ρb²).
+#[inline]
+fn combine(ra: f64, pa: f64, rb: f64, pb: f64, wt: f64) -> (Complex<f64>, f64) {
+    let (sa, ca) = fastmath::sin_cos(pa - wt);
+    let (sb, cb) = fastmath::sin_cos(pb - wt);
+    let h = Complex::new(ra * ca + rb * cb, ra * sa - rb * sb);
+    (h, (ra * ra).max(rb * rb))
 }
 
 /// The non-redundant half of h̃(k, t): `nx/2 + 1` lines (kx index n = 0..=nx/2), each
@@ -137,28 +160,73 @@ impl HalfSpectrum {
     }
 }
 
-/// Builds h̃(k, t) for every resolved wavevector with n ≥ 0.
+/// Per-thread buffers of one kx line.
+struct LineBuffers {
+    ky: Vec<f64>,
+    neg_ky: Vec<f64>,
+    /// E|h̃0(k)|² and E|h̃0(−k)|², then ρ of h̃0(k) and h̃0(−k).
+    pa: Vec<f64>,
+    pb: Vec<f64>,
+    /// Phases of h̃0(k) and h̃0(−k).
+    pha: Vec<f64>,
+    phb: Vec<f64>,
+}
+
+/// Builds h̃(k, t) for every resolved wavevector with n ≥ 0, line by line: the spectrum
+/// over a whole line first (one call, a loop the compiler can pipeline), then the draws.
+/// Values equal [`SpectrumSetup::amplitude`]'s.
 pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     let lines = nx / 2 + 1;
+    let (dkx, dky) = setup.dk();
+    let ky: Vec<f64> = (0..ny)
+        .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
+        .collect();
     let mut data = vec![Complex32::new(0.0, 0.0); lines * ny];
     let h0max = data
         .par_chunks_mut(ny)
         .enumerate()
-        .map(|(n, line)| {
-            let n = n as i64;
-            let mut peak = 0.0f64;
-            for (idx, out) in line.iter_mut().enumerate() {
-                let m = signed_index(idx, ny);
-                if !is_resolved(n, m, nx, ny) {
-                    continue;
+        .map_init(
+            || LineBuffers {
+                ky: ky.clone(),
+                neg_ky: ky.iter().map(|v| -v).collect(),
+                pa: vec![0.0; ny],
+                pb: vec![0.0; ny],
+                pha: vec![0.0; ny],
+                phb: vec![0.0; ny],
+            },
+            |buf, (n, line)| {
+                let n = n as i64;
+                let kx = setup.wavevector(n, 0).0;
+                setup
+                    .spectrum
+                    .amplitude_variance_line(kx, &buf.ky, dkx, dky, &mut buf.pa);
+                setup
+                    .spectrum
+                    .amplitude_variance_line(-kx, &buf.neg_ky, dkx, dky, &mut buf.pb);
+                // Short loops of independent iterations, which the processor overlaps.
+                for idx in 0..ny {
+                    let m = signed_index(idx, ny);
+                    (buf.pa[idx], buf.pha[idx]) = setup.polar_from(buf.pa[idx], n, m);
                 }
-                let (h, p) = setup.amplitude(n, m);
-                peak = peak.max(p);
-                *out = Complex32::new(h.re as f32, h.im as f32);
-            }
-            peak
-        })
+                for idx in 0..ny {
+                    let m = signed_index(idx, ny);
+                    (buf.pb[idx], buf.phb[idx]) = setup.polar_from(buf.pb[idx], -n, -m);
+                }
+                let mut peak = 0.0f64;
+                for (idx, out) in line.iter_mut().enumerate() {
+                    let m = signed_index(idx, ny);
+                    if !is_resolved(n, m, nx, ny) {
+                        continue;
+                    }
+                    let wt = setup.omega_t(kx, buf.ky[idx]);
+                    let (h, p) = combine(buf.pa[idx], buf.pha[idx], buf.pb[idx], buf.phb[idx], wt);
+                    peak = peak.max(p);
+                    *out = Complex32::new(h.re as f32, h.im as f32);
+                }
+                peak
+            },
+        )
         .reduce(|| 0.0, f64::max);
     HalfSpectrum {
         nx,

@@ -20,4 +20,13 @@ pub trait Spectrum: Send + Sync {
     /// E|h̃0(k)|² in m² for wavevector `(kx, ky)` in rad/m, on a grid with wavevector
     /// spacing `(dkx, dky)` = 2π·(1/Lx, 1/Ly). Never negative, finite for k ≠ 0.
     fn amplitude_variance(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> f64;
+
+    /// [`amplitude_variance`](Self::amplitude_variance) along a line of wavevectors
+    /// (kx, ky[i]), into `out`. Models override it with a loop the compiler can inline;
+    /// results must equal the one-at-a-time values bit for bit.
+    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], dkx: f64, dky: f64, out: &mut [f64]) {
+        for (o, &y) in out.iter_mut().zip(ky) {
+            *o = self.amplitude_variance(kx, y, dkx, dky);
+        }
+    }
 }

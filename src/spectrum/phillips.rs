@@ -7,6 +7,7 @@
 //! unit wind direction, V the wind speed and l the small-wave cutoff length.
 
 use super::{G, Spectrum};
+use crate::fastmath;
 
 /// A validated Phillips spectrum.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,6 +37,7 @@ impl Phillips {
     }
 
     /// P(k) at wavevector `(kx, ky)`; 0 at k = 0.
+    #[inline]
     pub fn value(&self, kx: f64, ky: f64) -> f64 {
         let k2 = kx * kx + ky * ky;
         if k2 == 0.0 {
@@ -43,15 +45,24 @@ impl Phillips {
         }
         let kl2 = k2 * self.big_l_m * self.big_l_m;
         let cos = (kx * self.wind_dir.0 + ky * self.wind_dir.1) / k2.sqrt();
-        self.a * (-1.0 / kl2).exp() / (k2 * k2)
-            * (cos * cos)
-            * (-k2 * self.small_l_m * self.small_l_m).exp()
+        let damping = if self.small_l_m > 0.0 {
+            fastmath::exp(-k2 * self.small_l_m * self.small_l_m)
+        } else {
+            1.0
+        };
+        self.a * fastmath::exp(-1.0 / kl2) / (k2 * k2) * (cos * cos) * damping
     }
 }
 
 impl Spectrum for Phillips {
     fn amplitude_variance(&self, kx: f64, ky: f64, _dkx: f64, _dky: f64) -> f64 {
         self.value(kx, ky)
+    }
+
+    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
+        for (o, &y) in out.iter_mut().zip(ky) {
+            *o = self.value(kx, y);
+        }
     }
 }
 
