@@ -11,7 +11,7 @@ use crate::config::{Beta, Method, Params, SpectrumModel};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::rng::{Stream, sub_seed};
-use crate::spectrum::{Dispersion, Phillips};
+use crate::spectrum::{Dispersion, Phillips, Spectrum};
 
 /// What a synthesis found out along the way, recorded in the sidecar.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -49,16 +49,22 @@ pub fn perlin_params(params: &Params) -> perlin::PerlinParams {
     }
 }
 
-/// The spectrum model of `params`.
+/// The Phillips spectrum of `params`.
 pub fn phillips(params: &Params) -> Phillips {
-    match params.spectrum.model {
-        SpectrumModel::Phillips => Phillips::new(
-            params.spectrum.phillips_a,
-            params.wind.speed_mps,
-            params.wind.direction_deg.to_radians(),
-            params.spectrum.small_wave_m,
-        ),
-    }
+    Phillips::new(
+        params.spectrum.phillips_a,
+        params.wind.speed_mps,
+        params.wind.direction_deg.to_radians(),
+        params.spectrum.small_wave_m,
+    )
+}
+
+/// The spectrum model of validated `params` (E|h̃0(k)|² per wavevector), and the
+/// dispersion relation waves follow.
+pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)> {
+    Ok(match params.spectrum.model {
+        SpectrumModel::Phillips => (Box::new(phillips(params)), Dispersion::Deep),
+    })
 }
 
 /// Computes the field that validated `params` describe.
@@ -72,12 +78,14 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
     };
     let fft = match params.method {
         Method::Fft | Method::Hybrid => {
-            let model = phillips(params);
-            info.phillips_largest_wave_m = Some(model.largest_wave_m());
+            if params.spectrum.model == SpectrumModel::Phillips {
+                info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
+            }
+            let (model, dispersion) = spectrum_model(params)?;
             let setup = fft::SpectrumSetup {
                 spec,
-                spectrum: &model,
-                dispersion: Dispersion::Deep,
+                spectrum: model.as_ref(),
+                dispersion,
                 seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
                 time_s: params.time_s,
             };
