@@ -18,6 +18,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate(args) => generate(*args),
         Command::Presets { name } => list_presets(name.as_deref()),
+        Command::Analyze(args) => crate::analyze::run(args),
         Command::Bench(args) => crate::bench::run(args),
     }
 }

@@ -26,6 +26,8 @@ pub enum Command {
         /// Preset to print
         name: Option<String>,
     },
+    /// Statistics and the measured spectrum of a height map (TIFF in meters, or PNG with its sidecar)
+    Analyze(crate::analyze::AnalyzeArgs),
     /// Time each stage (spectrum, FFT, Perlin, blend, writers) against a bare 2D real FFT
     Bench(BenchArgs),
 }

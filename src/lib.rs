@@ -1,5 +1,6 @@
 //! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
 
+pub mod analyze;
 pub mod app;
 pub mod bench;
 pub mod cli;

@@ -21,6 +21,12 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("wind-speed", "wind.speed_mps"),
     ("wind-dir", "wind.direction_deg"),
     ("spectrum", "spectrum.model"),
+    ("spreading", "spectrum.spreading"),
+    ("fetch-km", "spectrum.fetch_km"),
+    ("depth", "spectrum.depth_m"),
+    ("hs", "spectrum.hs_m"),
+    ("tp", "spectrum.tp_s"),
+    ("gamma", "spectrum.gamma"),
     ("height-range", "output.height_range"),
 ];
 

@@ -4,13 +4,14 @@
 
 pub mod layers;
 pub mod presets;
+pub mod validate;
 pub mod values;
 
 use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::ParamError;
+pub use validate::{MAX_SAMPLES, MAX_SIDE};
 pub use values::{Beta, Extent2, Range2, Size2};
 
 /// Which field to synthesize.
@@ -23,6 +24,8 @@ pub enum Method {
     Fft,
     /// Multi-octave Perlin noise alone (Li Tian Fig. 2a), in [−1, 1] times `perlin.amplitude_m`.
     Perlin,
+    /// Mastin et al.: white noise filtered by the spectrum in the Fourier domain.
+    FilteredNoise,
 }
 
 impl Method {
@@ -31,6 +34,7 @@ impl Method {
             Method::Hybrid => "hybrid",
             Method::Fft => "fft",
             Method::Perlin => "perlin",
+            Method::FilteredNoise => "filtered-noise",
         }
     }
 }
@@ -41,6 +45,38 @@ impl Method {
 pub enum SpectrumModel {
     /// Tessendorf's Phillips spectrum, discrete convention.
     Phillips,
+    /// Fully developed sea (Mastin eq. 1–2), heights in meters.
+    PiersonMoskowitz,
+    /// Fetch-limited sea, peak enhancement γ.
+    Jonswap,
+    /// JONSWAP in water of finite depth (Kitaigorodskii factor).
+    Tma,
+    /// Isotropic 1/k^β power law for terrain, set by the fractal dimension.
+    Fractal,
+}
+
+impl SpectrumModel {
+    /// The physical (meters) frequency spectra.
+    pub fn is_physical_sea(&self) -> bool {
+        matches!(
+            self,
+            SpectrumModel::PiersonMoskowitz | SpectrumModel::Jonswap | SpectrumModel::Tma
+        )
+    }
+}
+
+/// Directional spreading models of the physical spectra.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpreadingName {
+    /// Phillips' |k̂·ŵ|², normalized.
+    Cos2,
+    /// cos^{2p}(θ/2), p = 9.77 (f/fm)^μ (Mastin eq. 4–6).
+    Hasselmann,
+    /// cos^{2s}(θ/2), s from U10/c_p (Mitsuyasu 1975).
+    Mitsuyasu,
+    /// sech²(βθ) (Donelan, Hamilton & Hui 1985).
+    DonelanBanner,
 }
 
 /// Every parameter of a run. Missing keys take the defaults of the `li-tian` preset.
@@ -55,6 +91,7 @@ pub struct Params {
     pub grid: GridParams,
     pub wind: WindParams,
     pub spectrum: SpectrumParams,
+    pub fractal: FractalParams,
     pub perlin: PerlinConfig,
     pub blend: BlendParams,
     pub output: OutputParams,
@@ -86,6 +123,46 @@ pub struct SpectrumParams {
     pub phillips_a: f64,
     /// Small-wave cutoff l of Li Tian eq. 8, meters (0: none).
     pub small_wave_m: f64,
+    /// Directional spreading of the physical spectra.
+    pub spreading: SpreadingName,
+    /// Swell parameter ξ ≥ 0 narrowing the spreading (0: none).
+    pub swell: f64,
+    /// Fetch for JONSWAP and TMA from wind, km.
+    pub fetch_km: f64,
+    /// Water depth, m: finite-depth dispersion for every spectrum, and TMA's depth.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth_m: Option<f64>,
+    /// Significant wave height, m: with `tp_s`, sets PM/JONSWAP/TMA instead of wind and fetch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hs_m: Option<f64>,
+    /// Peak period, s (with `hs_m`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tp_s: Option<f64>,
+    /// JONSWAP peak enhancement γ ≥ 1.
+    pub gamma: f64,
+}
+
+/// The `fractal` spectrum (terrain).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FractalParams {
+    /// Fractal dimension D, 2 < D < 3 (spectral slope k^−(8−2D)).
+    pub dimension: f64,
+    /// Expected standard deviation of the heights, m.
+    pub relief_m: f64,
+    /// Wavelength where Mastin's Gaussian low-frequency attenuation peaks, m (none: pure power law).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolloff_m: Option<f64>,
+}
+
+impl Default for FractalParams {
+    fn default() -> Self {
+        Self {
+            dimension: 2.2,
+            relief_m: 50.0,
+            rolloff_m: None,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -189,6 +266,7 @@ impl Default for Params {
             grid: GridParams::default(),
             wind: WindParams::default(),
             spectrum: SpectrumParams::default(),
+            fractal: FractalParams::default(),
             perlin: PerlinConfig::default(),
             blend: BlendParams::default(),
             output: OutputParams::default(),
@@ -220,6 +298,13 @@ impl Default for SpectrumParams {
             model: SpectrumModel::Phillips,
             phillips_a: DEFAULT_PHILLIPS_A,
             small_wave_m: 0.0,
+            spreading: SpreadingName::Hasselmann,
+            swell: 0.0,
+            fetch_km: 100.0,
+            depth_m: None,
+            hs_m: None,
+            tp_s: None,
+            gamma: 3.3,
         }
     }
 }
@@ -253,155 +338,6 @@ impl Default for BlendParams {
             beta: Beta::Paper,
             beta_scale: 1.0,
         }
-    }
-}
-
-/// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
-pub const MAX_SIDE: usize = 1 << 16;
-pub const MAX_SAMPLES: usize = 1 << 30;
-
-fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
-    ParamError {
-        name: name.to_string(),
-        allowed: allowed.to_string(),
-        got: got.to_string(),
-    }
-}
-
-fn positive(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(err(name, &format!("a finite number > 0{unit}"), v))
-    }
-}
-
-fn non_negative(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(())
-    } else {
-        Err(err(name, &format!("a finite number ≥ 0{unit}"), v))
-    }
-}
-
-fn finite(name: &str, v: f64) -> Result<(), ParamError> {
-    if v.is_finite() {
-        Ok(())
-    } else {
-        Err(err(name, "a finite number", v))
-    }
-}
-
-impl Params {
-    /// Checks every value once; a valid `Params` can always be synthesized.
-    pub fn validate(&self) -> Result<(), ParamError> {
-        let [nx, ny] = self.grid.size.0;
-        for (axis, n) in [("x", nx), ("y", ny)] {
-            if !(2..=MAX_SIDE).contains(&n) {
-                return Err(err(
-                    &format!("--size (grid.size, {axis})"),
-                    &format!("between 2 and {MAX_SIDE} samples"),
-                    n,
-                ));
-            }
-        }
-        if nx * ny > MAX_SAMPLES {
-            return Err(err(
-                "--size (grid.size)",
-                &format!("at most {MAX_SAMPLES} samples in all"),
-                format!("{nx}x{ny}"),
-            ));
-        }
-        for (axis, l) in [
-            ("x", self.grid.extent_m.0[0]),
-            ("y", self.grid.extent_m.0[1]),
-        ] {
-            positive(&format!("--extent (grid.extent_m, {axis})"), " m", l)?;
-        }
-        if self.seed > i64::MAX as u64 {
-            return Err(err(
-                "--seed (seed)",
-                &format!("between 0 and {}", i64::MAX),
-                self.seed,
-            ));
-        }
-        finite("--time (time_s)", self.time_s)?;
-        let w = &self.wind;
-        if !(w.speed_mps.is_finite() && w.speed_mps > 0.0 && w.speed_mps <= 100.0) {
-            return Err(err(
-                "--wind-speed (wind.speed_mps)",
-                "> 0 and ≤ 100 m/s",
-                w.speed_mps,
-            ));
-        }
-        finite("--wind-dir (wind.direction_deg)", w.direction_deg)?;
-        let s = &self.spectrum;
-        positive("spectrum.phillips_a", "", s.phillips_a)?;
-        non_negative("spectrum.small_wave_m", " m", s.small_wave_m)?;
-        let p = &self.perlin;
-        if !(1..=24).contains(&p.octaves) {
-            return Err(err("perlin.octaves", "between 1 and 24", p.octaves));
-        }
-        if !(p.persistence > 0.0 && p.persistence < 1.0) {
-            return Err(err("perlin.persistence", "> 0 and < 1", p.persistence));
-        }
-        if !(p.lacunarity.is_finite() && p.lacunarity > 1.0 && p.lacunarity <= 16.0) {
-            return Err(err("perlin.lacunarity", "> 1 and ≤ 16", p.lacunarity));
-        }
-        positive("perlin.wavelength_m", " m", p.wavelength_m)?;
-        non_negative("perlin.amplitude_m", " m", p.amplitude_m)?;
-        match &self.blend.alpha {
-            AlphaConfig::Constant { value } => {
-                if !(0.0..=1.0).contains(value) {
-                    return Err(err("blend.alpha.value", "between 0 and 1", value));
-                }
-            }
-            AlphaConfig::Ramp { power, .. } => positive("blend.alpha.power", "", *power)?,
-            AlphaConfig::Radial {
-                power,
-                center_m,
-                radius_m,
-            } => {
-                positive("blend.alpha.power", "", *power)?;
-                if let Some(c) = center_m {
-                    finite("blend.alpha.center_m (x)", c[0])?;
-                    finite("blend.alpha.center_m (y)", c[1])?;
-                }
-                if let Some(r) = radius_m {
-                    positive("blend.alpha.radius_m", " m", *r)?;
-                }
-            }
-            AlphaConfig::Image { path } => {
-                if !path.is_file() {
-                    return Err(err(
-                        "blend.alpha.path",
-                        "an existing PNG file",
-                        path.display(),
-                    ));
-                }
-            }
-        }
-        if let Beta::Meters(b) = self.blend.beta {
-            non_negative("blend.beta", " m", b)?;
-        }
-        non_negative("blend.beta_scale", "", self.blend.beta_scale)?;
-        if let Some(Range2([lo, hi])) = self.output.height_range {
-            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-                return Err(err(
-                    "--height-range (output.height_range)",
-                    "MIN:MAX with finite MIN < MAX",
-                    format!("{lo}:{hi}"),
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// The grid these parameters describe.
-    pub fn grid_spec(&self) -> crate::grid::GridSpec {
-        let [nx, ny] = self.grid.size.0;
-        let [lx, ly] = self.grid.extent_m.0;
-        crate::grid::GridSpec::new(nx, ny, lx, ly)
     }
 }
 

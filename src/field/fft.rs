@@ -72,7 +72,7 @@ impl SpectrumSetup<'_> {
         )
     }
 
-    fn dk(&self) -> (f64, f64) {
+    pub fn dk(&self) -> (f64, f64) {
         self.wavevector(1, 1)
     }
 
@@ -161,21 +161,25 @@ impl HalfSpectrum {
 }
 
 /// Per-thread buffers of one kx line.
-struct LineBuffers {
-    ky: Vec<f64>,
+pub(crate) struct LineBuffers {
+    pub ky: Vec<f64>,
     neg_ky: Vec<f64>,
-    /// E|h̃0(k)|² and E|h̃0(−k)|², then ρ of h̃0(k) and h̃0(−k).
-    pa: Vec<f64>,
-    pb: Vec<f64>,
-    /// Phases of h̃0(k) and h̃0(−k).
-    pha: Vec<f64>,
-    phb: Vec<f64>,
+    /// E|h̃0(k)|² and E|h̃0(−k)|² of the line (kernels may reuse them).
+    pub pa: Vec<f64>,
+    pub pb: Vec<f64>,
+    /// Scratch for kernels.
+    pub pha: Vec<f64>,
+    pub phb: Vec<f64>,
 }
 
-/// Builds h̃(k, t) for every resolved wavevector with n ≥ 0, line by line: the spectrum
-/// over a whole line first (one call, a loop the compiler can pipeline), then the draws.
-/// Values equal [`SpectrumSetup::amplitude`]'s.
-pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
+/// Builds the half spectrum line by line in parallel: for each kx line n, the spectrum
+/// E|h̃0(±k)|² over the whole line first (one call, a loop the compiler can pipeline),
+/// then `kernel(n, kx, buffers, line)` fills the line and returns a peak value; the
+/// result's `h0max_m` is the square root of the largest peak.
+pub(crate) fn build_lines<K>(setup: &SpectrumSetup, kernel: K) -> HalfSpectrum
+where
+    K: Fn(i64, f64, &mut LineBuffers, &mut [Complex32]) -> f64 + Sync,
+{
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     let lines = nx / 2 + 1;
     let (dkx, dky) = setup.dk();
@@ -183,7 +187,7 @@ pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
         .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
         .collect();
     let mut data = vec![Complex32::new(0.0, 0.0); lines * ny];
-    let h0max = data
+    let peak = data
         .par_chunks_mut(ny)
         .enumerate()
         .map_init(
@@ -204,27 +208,7 @@ pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
                 setup
                     .spectrum
                     .amplitude_variance_line(-kx, &buf.neg_ky, dkx, dky, &mut buf.pb);
-                // Short loops of independent iterations, which the processor overlaps.
-                for idx in 0..ny {
-                    let m = signed_index(idx, ny);
-                    (buf.pa[idx], buf.pha[idx]) = setup.polar_from(buf.pa[idx], n, m);
-                }
-                for idx in 0..ny {
-                    let m = signed_index(idx, ny);
-                    (buf.pb[idx], buf.phb[idx]) = setup.polar_from(buf.pb[idx], -n, -m);
-                }
-                let mut peak = 0.0f64;
-                for (idx, out) in line.iter_mut().enumerate() {
-                    let m = signed_index(idx, ny);
-                    if !is_resolved(n, m, nx, ny) {
-                        continue;
-                    }
-                    let wt = setup.omega_t(kx, buf.ky[idx]);
-                    let (h, p) = combine(buf.pa[idx], buf.pha[idx], buf.pb[idx], buf.phb[idx], wt);
-                    peak = peak.max(p);
-                    *out = Complex32::new(h.re as f32, h.im as f32);
-                }
-                peak
+                kernel(n, kx, buf, line)
             },
         )
         .reduce(|| 0.0, f64::max);
@@ -232,8 +216,37 @@ pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
         nx,
         ny,
         data,
-        h0max_m: h0max.sqrt(),
+        h0max_m: peak.sqrt(),
     }
+}
+
+/// Builds h̃(k, t) for every resolved wavevector with n ≥ 0 (Tessendorf). Values equal
+/// [`SpectrumSetup::amplitude`]'s.
+pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    build_lines(setup, |n, kx, buf, line| {
+        // Short loops of independent iterations, which the processor overlaps.
+        for idx in 0..ny {
+            let m = signed_index(idx, ny);
+            (buf.pa[idx], buf.pha[idx]) = setup.polar_from(buf.pa[idx], n, m);
+        }
+        for idx in 0..ny {
+            let m = signed_index(idx, ny);
+            (buf.pb[idx], buf.phb[idx]) = setup.polar_from(buf.pb[idx], -n, -m);
+        }
+        let mut peak = 0.0f64;
+        for (idx, out) in line.iter_mut().enumerate() {
+            let m = signed_index(idx, ny);
+            if !is_resolved(n, m, nx, ny) {
+                continue;
+            }
+            let wt = setup.omega_t(kx, buf.ky[idx]);
+            let (h, p) = combine(buf.pa[idx], buf.pha[idx], buf.pb[idx], buf.phb[idx], wt);
+            peak = peak.max(p);
+            *out = Complex32::new(h.re as f32, h.im as f32);
+        }
+        peak
+    })
 }
 
 /// A planned 2D inverse transform from a [`HalfSpectrum`] to a real N×M field.

@@ -1,6 +1,7 @@
 //! Height fields: each method computes a [`Grid`] of heights in meters.
 
 pub mod fft;
+pub mod filtered_noise;
 pub mod hybrid;
 pub mod perlin;
 pub mod weight;
@@ -64,6 +65,14 @@ pub fn phillips(params: &Params) -> Phillips {
 pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)> {
     Ok(match params.spectrum.model {
         SpectrumModel::Phillips => (Box::new(phillips(params)), Dispersion::Deep),
+        other => {
+            return Err(crate::error::ParamError {
+                name: "--spectrum (spectrum.model)".into(),
+                allowed: "phillips (the other models are being added)".into(),
+                got: crate::config::validate::model_name(other),
+            }
+            .into());
+        }
     })
 }
 
@@ -77,7 +86,7 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
         _ => None,
     };
     let fft = match params.method {
-        Method::Fft | Method::Hybrid => {
+        Method::Fft | Method::Hybrid | Method::FilteredNoise => {
             if params.spectrum.model == SpectrumModel::Phillips {
                 info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
             }
@@ -89,9 +98,16 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
                 seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
                 time_s: params.time_s,
             };
-            let (grid, h0max) = fft::fft_field(&setup);
-            info.h0max_m = Some(h0max);
-            Some(grid)
+            let half = if params.method == Method::FilteredNoise {
+                filtered_noise::filtered_spectrum(&setup)
+            } else {
+                fft::synthesize_spectrum(&setup)
+            };
+            if params.method != Method::FilteredNoise {
+                info.h0max_m = Some(half.h0max_m);
+            }
+            let data = fft::InverseFft2::new(spec.nx, spec.ny).process(half);
+            Some(Grid::new(spec, data))
         }
         Method::Perlin => None,
     };
@@ -101,7 +117,7 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
             info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
             Some(perlin::perlin_field(&spec, &pp))
         }
-        Method::Fft => None,
+        Method::Fft | Method::FilteredNoise => None,
     };
     let grid = match (fft, noise, alpha) {
         (Some(mut f), Some(p), Some(alpha)) => {

@@ -1,0 +1,223 @@
+//! Validation of [`Params`]: every value checked once, where parameters are resolved; a
+//! valid `Params` can always be synthesized.
+
+use super::{AlphaConfig, Beta, Method, Params, Range2, SpectrumModel};
+use crate::error::ParamError;
+
+/// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
+pub const MAX_SIDE: usize = 1 << 16;
+pub const MAX_SAMPLES: usize = 1 << 30;
+
+fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
+    ParamError {
+        name: name.to_string(),
+        allowed: allowed.to_string(),
+        got: got.to_string(),
+    }
+}
+
+fn positive(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(err(name, &format!("a finite number > 0{unit}"), v))
+    }
+}
+
+fn non_negative(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(err(name, &format!("a finite number ≥ 0{unit}"), v))
+    }
+}
+
+fn finite(name: &str, v: f64) -> Result<(), ParamError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(err(name, "a finite number", v))
+    }
+}
+
+impl Params {
+    /// Checks every value once; a valid `Params` can always be synthesized.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let [nx, ny] = self.grid.size.0;
+        for (axis, n) in [("x", nx), ("y", ny)] {
+            if !(2..=MAX_SIDE).contains(&n) {
+                return Err(err(
+                    &format!("--size (grid.size, {axis})"),
+                    &format!("between 2 and {MAX_SIDE} samples"),
+                    n,
+                ));
+            }
+        }
+        if nx * ny > MAX_SAMPLES {
+            return Err(err(
+                "--size (grid.size)",
+                &format!("at most {MAX_SAMPLES} samples in all"),
+                format!("{nx}x{ny}"),
+            ));
+        }
+        for (axis, l) in [
+            ("x", self.grid.extent_m.0[0]),
+            ("y", self.grid.extent_m.0[1]),
+        ] {
+            positive(&format!("--extent (grid.extent_m, {axis})"), " m", l)?;
+        }
+        if self.seed > i64::MAX as u64 {
+            return Err(err(
+                "--seed (seed)",
+                &format!("between 0 and {}", i64::MAX),
+                self.seed,
+            ));
+        }
+        finite("--time (time_s)", self.time_s)?;
+        let w = &self.wind;
+        if !(w.speed_mps.is_finite() && w.speed_mps > 0.0 && w.speed_mps <= 100.0) {
+            return Err(err(
+                "--wind-speed (wind.speed_mps)",
+                "> 0 and ≤ 100 m/s",
+                w.speed_mps,
+            ));
+        }
+        finite("--wind-dir (wind.direction_deg)", w.direction_deg)?;
+        let s = &self.spectrum;
+        positive("spectrum.phillips_a", "", s.phillips_a)?;
+        non_negative("spectrum.small_wave_m", " m", s.small_wave_m)?;
+        let p = &self.perlin;
+        if !(1..=24).contains(&p.octaves) {
+            return Err(err("perlin.octaves", "between 1 and 24", p.octaves));
+        }
+        if !(p.persistence > 0.0 && p.persistence < 1.0) {
+            return Err(err("perlin.persistence", "> 0 and < 1", p.persistence));
+        }
+        if !(p.lacunarity.is_finite() && p.lacunarity > 1.0 && p.lacunarity <= 16.0) {
+            return Err(err("perlin.lacunarity", "> 1 and ≤ 16", p.lacunarity));
+        }
+        positive("perlin.wavelength_m", " m", p.wavelength_m)?;
+        non_negative("perlin.amplitude_m", " m", p.amplitude_m)?;
+        match &self.blend.alpha {
+            AlphaConfig::Constant { value } => {
+                if !(0.0..=1.0).contains(value) {
+                    return Err(err("blend.alpha.value", "between 0 and 1", value));
+                }
+            }
+            AlphaConfig::Ramp { power, .. } => positive("blend.alpha.power", "", *power)?,
+            AlphaConfig::Radial {
+                power,
+                center_m,
+                radius_m,
+            } => {
+                positive("blend.alpha.power", "", *power)?;
+                if let Some(c) = center_m {
+                    finite("blend.alpha.center_m (x)", c[0])?;
+                    finite("blend.alpha.center_m (y)", c[1])?;
+                }
+                if let Some(r) = radius_m {
+                    positive("blend.alpha.radius_m", " m", *r)?;
+                }
+            }
+            AlphaConfig::Image { path } => {
+                if !path.is_file() {
+                    return Err(err(
+                        "blend.alpha.path",
+                        "an existing PNG file",
+                        path.display(),
+                    ));
+                }
+            }
+        }
+        if let Beta::Meters(b) = self.blend.beta {
+            non_negative("blend.beta", " m", b)?;
+        }
+        non_negative("blend.beta_scale", "", self.blend.beta_scale)?;
+        if let Some(Range2([lo, hi])) = self.output.height_range {
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(err(
+                    "--height-range (output.height_range)",
+                    "MIN:MAX with finite MIN < MAX",
+                    format!("{lo}:{hi}"),
+                ));
+            }
+        }
+        self.validate_sea()
+    }
+
+    /// The grid these parameters describe.
+    pub fn grid_spec(&self) -> crate::grid::GridSpec {
+        let [nx, ny] = self.grid.size.0;
+        let [lx, ly] = self.grid.extent_m.0;
+        crate::grid::GridSpec::new(nx, ny, lx, ly)
+    }
+}
+
+impl Params {
+    fn validate_sea(&self) -> Result<(), ParamError> {
+        let s = &self.spectrum;
+        non_negative("spectrum.swell", "", s.swell)?;
+        if s.swell > 10.0 {
+            return Err(err("spectrum.swell", "between 0 and 10", s.swell));
+        }
+        positive("--fetch-km (spectrum.fetch_km)", " km", s.fetch_km)?;
+        if let Some(d) = s.depth_m {
+            positive("--depth (spectrum.depth_m)", " m", d)?;
+        }
+        if !(s.gamma.is_finite() && (1.0..=20.0).contains(&s.gamma)) {
+            return Err(err("--gamma (spectrum.gamma)", "between 1 and 20", s.gamma));
+        }
+        match (s.hs_m, s.tp_s) {
+            (Some(h), Some(t)) => {
+                positive("--hs (spectrum.hs_m)", " m", h)?;
+                positive("--tp (spectrum.tp_s)", " s", t)?;
+                if !s.model.is_physical_sea() {
+                    return Err(err(
+                        "--hs/--tp",
+                        "used with --spectrum pierson-moskowitz, jonswap or tma",
+                        format!("--spectrum {}", model_name(s.model)),
+                    ));
+                }
+            }
+            (None, None) => {}
+            (h, t) => {
+                return Err(err(
+                    "--hs and --tp",
+                    "given together",
+                    format!("hs {h:?}, tp {t:?}"),
+                ));
+            }
+        }
+        if s.model == SpectrumModel::Tma && s.depth_m.is_none() {
+            return Err(err(
+                "--depth (spectrum.depth_m)",
+                "set for --spectrum tma",
+                "none",
+            ));
+        }
+        let f = &self.fractal;
+        if !(f.dimension > 2.0 && f.dimension < 3.0) {
+            return Err(err("fractal.dimension", "> 2 and < 3", f.dimension));
+        }
+        positive("fractal.relief_m", " m", f.relief_m)?;
+        if let Some(r) = f.rolloff_m {
+            positive("fractal.rolloff_m", " m", r)?;
+        }
+        if self.method == Method::FilteredNoise && self.time_s != 0.0 {
+            return Err(err(
+                "--time (time_s)",
+                "0 for --method filtered-noise (a still image)",
+                self.time_s,
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The name of a spectrum model as written in presets.
+pub fn model_name(m: SpectrumModel) -> String {
+    serde_json::to_value(m)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
