@@ -927,7 +927,7 @@ mod tests {
         for (nx, ny) in [(64, 64), (33, 20), (17, 48)] {
             let spec = GridSpec::new(nx, ny, nx as f64 * 0.7, ny as f64 * 1.3);
             let data = (0..nx * ny)
-                .map(|v| ((v as f32 * 0.37).sin() + (v as f32 * 0.011).cos() * 2.0))
+                .map(|v| (v as f32 * 0.37).sin() + (v as f32 * 0.011).cos() * 2.0)
                 .collect();
             let g = Grid::new(spec, data);
             let a = analyze(&g, None);

@@ -41,12 +41,30 @@ pub struct FieldArgs {
     /// Set any parameter: a preset key (wind.speed_mps) or a flag name (wind-speed)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// hybrid (default), fft, perlin
+    /// hybrid (default), fft, filtered-noise, perlin
     #[arg(long)]
     pub method: Option<String>,
-    /// Spectrum model: phillips
+    /// Spectrum model: phillips, pierson-moskowitz, jonswap, tma, fractal
     #[arg(long)]
     pub spectrum: Option<String>,
+    /// Directional spreading: cos2, hasselmann, mitsuyasu, donelan-banner
+    #[arg(long)]
+    pub spreading: Option<String>,
+    /// Fetch for JONSWAP/TMA, km
+    #[arg(long, value_name = "KM", allow_hyphen_values = true)]
+    pub fetch_km: Option<String>,
+    /// Water depth, m (finite-depth dispersion; required by tma)
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    pub depth: Option<String>,
+    /// Significant wave height, m (with --tp, instead of wind and fetch)
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    pub hs: Option<String>,
+    /// Peak period, s (with --hs)
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub tp: Option<String>,
+    /// JONSWAP peak enhancement γ (default 3.3)
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
+    pub gamma: Option<String>,
     /// Samples: N (square) or NxM
     #[arg(long, value_name = "N|NxM", allow_hyphen_values = true)]
     pub size: Option<String>,
@@ -76,6 +94,12 @@ impl FieldArgs {
         [
             ("method", &self.method),
             ("spectrum", &self.spectrum),
+            ("spreading", &self.spreading),
+            ("fetch-km", &self.fetch_km),
+            ("depth", &self.depth),
+            ("hs", &self.hs),
+            ("tp", &self.tp),
+            ("gamma", &self.gamma),
             ("size", &self.size),
             ("extent", &self.extent),
             ("wind-speed", &self.wind_speed),

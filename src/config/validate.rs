@@ -180,13 +180,8 @@ impl Params {
                 }
             }
             (None, None) => {}
-            (h, t) => {
-                return Err(err(
-                    "--hs and --tp",
-                    "given together",
-                    format!("hs {h:?}, tp {t:?}"),
-                ));
-            }
+            (Some(_), None) => return Err(err("--tp (spectrum.tp_s)", "given with --hs", "none")),
+            (None, Some(_)) => return Err(err("--hs (spectrum.hs_m)", "given with --tp", "none")),
         }
         if s.model == SpectrumModel::Tma && s.depth_m.is_none() {
             return Err(err(

@@ -330,22 +330,50 @@ impl RowCtx {
     /// lattice column `ix`.
     #[inline(always)]
     fn column(&self, ix: i64) -> [f32; 2] {
-        let cx = (wrap(ix, self.wrap_x) as u64).wrapping_mul(K_COL);
-        let g0 = GRADIENTS[(fmix(self.hash0.wrapping_add(cx)) >> 56) as usize];
-        let g1 = GRADIENTS[(fmix(self.hash1.wrapping_add(cx)) >> 56) as usize];
-        let b0 = g0[1] * self.fy;
-        let b1 = g1[1] * (self.fy - 1.0);
-        [g0[0] + self.sy * (g1[0] - g0[0]), b0 + self.sy * (b1 - b0)]
+        let ck = col_key(ix, self.wrap_x);
+        column_coefs(
+            gradient(self.hash0, ck),
+            gradient(self.hash1, ck),
+            self.fy,
+            self.sy,
+        )
     }
 }
 
-/// Noise value from the coefficients of the cell's left column `c[0..2]` and right column
-/// `c[2..4]` and the x fraction.
+/// Hash key of lattice column `ix` (wrapped when `wrap_x > 0`).
 #[inline(always)]
-fn combine(c: &[f32; 4], fx: f32) -> f32 {
+fn col_key(ix: i64, wrap_x: i64) -> u64 {
+    (wrap(ix, wrap_x) as u64).wrapping_mul(K_COL)
+}
+
+/// Gradient of the lattice point with row hash `row_hash` and column key `col_key`.
+#[inline(always)]
+fn gradient(row_hash: u64, col_key: u64) -> [f32; 2] {
+    GRADIENTS[(fmix(row_hash.wrapping_add(col_key)) >> 56) as usize]
+}
+
+/// `[A, B]` of one lattice column from its gradients `g0` (row iy) and `g1` (row iy+1), the
+/// y fraction `fy` and its fade `sy` (see [`RowCtx::column`]).
+#[inline(always)]
+fn column_coefs(g0: [f32; 2], g1: [f32; 2], fy: f32, sy: f32) -> [f32; 2] {
+    let b0 = g0[1] * fy;
+    let b1 = g1[1] * (fy - 1.0);
+    [g0[0] + sy * (g1[0] - g0[0]), b0 + sy * (b1 - b0)]
+}
+
+/// Noise value from the coefficients of the cell's left column `c[0..2]` and right column
+/// `c[2..4]`, the x fraction and its fade `sx = fade(fx)`.
+#[inline(always)]
+fn combine_faded(c: &[f32; 4], fx: f32, sx: f32) -> f32 {
     let v0 = c[0] * fx + c[1];
     let v1 = c[2] * (fx - 1.0) + c[3];
-    v0 + fade(fx) * (v1 - v0)
+    v0 + sx * (v1 - v0)
+}
+
+/// [`combine_faded`] computing the fade itself.
+#[inline(always)]
+fn combine(c: &[f32; 4], fx: f32) -> f32 {
+    combine_faded(c, fx, fade(fx))
 }
 
 #[inline(always)]
@@ -362,74 +390,193 @@ fn accumulate<const FIRST: bool>(v: &mut f32, x: f32) {
     *v = if FIRST { 0.0 + x } else { *v + x };
 }
 
-/// Adds octave `o` to one output row at y = `y_m`; sample `i` sits at x = i·dx.
+// ---------------------------------------------------------------------------------------------
+// The grid: per-octave x tables shared by all rows, per-band caches of lattice-row gradients
+
+/// Average samples per cell from which a row is walked cell by cell (constant coefficients,
+/// vectorized inner loop) rather than sample by sample (coefficients gathered per sample).
+const MIN_RUN: usize = 6;
+
+/// Samples `start..end` of a row share the cell whose left column is `cols[left]`.
+#[derive(Debug, Clone, Copy)]
+struct Run {
+    start: usize,
+    end: usize,
+    left: usize,
+}
+
+/// Where the samples of a row fall along x for one octave. Every row has the same x
+/// positions, so this is computed once per octave for the whole grid.
 ///
-/// The row is walked cell by cell: for the samples whose lattice coordinate `u` has
-/// `floor(u) = k`, the fraction is `(u − k) as f32` (exactly what [`split`] gives) and the
-/// coefficients of the cell's two columns are constant, so the inner loop has no conversion
-/// to integer, no branch and no table look-up, and vectorizes.
-fn add_octave_row<const FIRST: bool>(o: &Octave, y_m: f64, dx: f64, out: &mut [f32]) {
-    let n = out.len();
-    let row = RowCtx::new(o, y_m);
-    let f = o.freq_x;
-    let u_at = |i: usize| i as f64 * dx * f;
-    let u_max = u_at(n - 1);
-    let tame = u_max.abs() < EXACT_INT / 2.0 && n <= i32::MAX as usize;
-    if !tame {
-        // Absurd frequencies or row lengths: plain per-sample evaluation (same arithmetic).
-        for (i, v) in out.iter_mut().enumerate() {
-            let (ix, fx) = split(u_at(i));
-            accumulate::<FIRST>(v, o.amp * combine(&cell(&row, ix), fx));
+/// `cols` lists the lattice columns the row touches, as hash keys, such that the cell of a
+/// sample with left column `cols[l]` has its right column at `cols[l + 1]`.
+struct XTable {
+    cols: Vec<u64>,
+    /// Per sample: the fraction `fx` given by [`split`] and `fade(fx)`.
+    fx: Vec<f32>,
+    sx: Vec<f32>,
+    /// Per sample: index in `cols` of the left column; empty when walking `runs`.
+    left: Vec<u32>,
+    /// Maximal runs of consecutive samples in one cell; empty when gathering via `left`.
+    runs: Vec<Run>,
+}
+
+impl XTable {
+    fn new(o: &Octave, nx: usize, dx: f64) -> Self {
+        let mut cols = Vec::new();
+        let mut fx = Vec::with_capacity(nx);
+        let mut sx = Vec::with_capacity(nx);
+        let mut lefts = Vec::with_capacity(nx);
+        let mut runs: Vec<Run> = Vec::new();
+        let mut prev: Option<i64> = None;
+        for i in 0..nx {
+            // Exactly the lattice coordinate `perlin_at` computes at x = spec.x_m(i).
+            let (k, f) = split(i as f64 * dx * o.freq_x);
+            fx.push(f);
+            sx.push(fade(f));
+            match prev {
+                Some(p) if p == k => runs.last_mut().expect("a run is open").end = i + 1,
+                _ => {
+                    let left = if prev.is_some_and(|p| p.wrapping_add(1) == k) {
+                        // The previous cell's right column is this cell's left column.
+                        cols.len() - 1
+                    } else {
+                        cols.push(col_key(k, o.wrap_x));
+                        cols.len() - 1
+                    };
+                    cols.push(col_key(k.wrapping_add(1), o.wrap_x));
+                    runs.push(Run {
+                        start: i,
+                        end: i + 1,
+                        left,
+                    });
+                }
+            }
+            lefts.push(runs.last().expect("a run is open").left);
+            prev = Some(k);
         }
-        return;
-    }
-    let step = dx * f; // only used to guess where a cell ends
-    let mut i = 0usize;
-    let mut k = split(u_at(0)).0;
-    let mut left = row.column(k);
-    while i < n {
-        let right = row.column(k + 1);
-        let c = [left[0], left[1], right[0], right[1]];
-        // End of the cell: first index e > i with u_at(e) >= k + 1 (or n).
-        let next = (k + 1) as f64;
-        let guess = (next / step).ceil();
-        let mut e = if guess >= n as f64 {
-            n
-        } else if guess > i as f64 {
-            guess as usize
+        let mr: usize = std::env::var("MR").ok().and_then(|v| v.parse().ok()).unwrap_or(MIN_RUN);
+        let gather = runs.len() * mr > nx && cols.len() <= u32::MAX as usize;
+        let (left, runs) = if gather {
+            (lefts.into_iter().map(|l| l as u32).collect(), Vec::new())
         } else {
-            i + 1
+            (Vec::new(), runs)
         };
-        while e > i + 1 && u_at(e - 1) >= next {
-            e -= 1;
-        }
-        while e < n && u_at(e) < next {
-            e += 1;
-        }
-        let kf = k as f64;
-        for (ii, v) in out[i..e].iter_mut().enumerate() {
-            let u = ((i + ii) as i32) as f64 * dx * f;
-            let fx = (u - kf) as f32;
-            accumulate::<FIRST>(v, o.amp * combine(&c, fx));
-        }
-        i = e;
-        if i < n {
-            let k_next = split(u_at(i)).0;
-            left = if k_next == k + 1 {
-                right
-            } else {
-                row.column(k_next)
-            };
-            k = k_next;
+        Self {
+            cols,
+            fx,
+            sx,
+            left,
+            runs,
         }
     }
 }
 
+/// Gradients of one lattice row at the columns of an [`XTable`].
+struct GradRow {
+    /// Row hash these gradients belong to, `None` while unfilled.
+    hash: Option<u64>,
+    g: Vec<[f32; 2]>,
+}
+
+/// Per-band working storage of one octave: the gradients of the last two lattice rows used
+/// (consecutive output rows mostly share their lattice rows) and the row's column
+/// coefficients. Caching does not change any value: it only skips recomputing them.
+struct OctaveScratch {
+    rows: [GradRow; 2],
+    coefs: Vec<[f32; 2]>,
+}
+
+impl OctaveScratch {
+    fn new(t: &XTable) -> Self {
+        let n = t.cols.len();
+        let row = || GradRow {
+            hash: None,
+            g: vec![[0.0; 2]; n],
+        };
+        Self {
+            rows: [row(), row()],
+            coefs: vec![[0.0; 2]; n],
+        }
+    }
+
+    /// Index of the slot holding the gradients of row hash `h`, filling the slot other than
+    /// `keep` when absent.
+    #[inline(always)]
+    fn slot(&mut self, t: &XTable, h: u64, keep: Option<usize>) -> usize {
+        if let Some(s) = self.rows.iter().position(|r| r.hash == Some(h)) {
+            return s;
+        }
+        let s = if keep == Some(0) { 1 } else { 0 };
+        let r = &mut self.rows[s];
+        for (g, &ck) in r.g.iter_mut().zip(&t.cols) {
+            *g = gradient(h, ck);
+        }
+        r.hash = Some(h);
+        s
+    }
+
+    /// Fills `coefs` with `[A, B]` of every column of `t` for the row `row`.
+    #[inline(always)]
+    fn fill_coefs(&mut self, t: &XTable, row: &RowCtx) {
+        let s0 = self.slot(t, row.hash0, None);
+        let s1 = self.slot(t, row.hash1, Some(s0));
+        let (g0, g1) = (&self.rows[s0].g, &self.rows[s1].g);
+        let (fy, sy) = (row.fy, row.sy);
+        for ((c, &a), &b) in self.coefs.iter_mut().zip(g0).zip(g1) {
+            *c = column_coefs(a, b, fy, sy);
+        }
+    }
+}
+
+/// Adds octave `o` to one output row at y = `y_m`.
+#[inline(always)]
+fn add_octave_row<const FIRST: bool>(
+    o: &Octave,
+    t: &XTable,
+    s: &mut OctaveScratch,
+    y_m: f64,
+    out: &mut [f32],
+) {
+    let row = RowCtx::new(o, y_m);
+    s.fill_coefs(t, &row);
+    let coefs = &s.coefs;
+    let amp = o.amp;
+    if t.runs.is_empty() {
+        // Small cells: gather the two columns' coefficients per sample.
+        for (((v, &l), &fx), &sx) in out.iter_mut().zip(&t.left).zip(&t.fx).zip(&t.sx) {
+            let l = l as usize;
+            let [a0, b0] = coefs[l];
+            let [a1, b1] = coefs[l + 1];
+            accumulate::<FIRST>(v, amp * combine_faded(&[a0, b0, a1, b1], fx, sx));
+        }
+    } else {
+        // Large cells: constant coefficients over each run.
+        for r in &t.runs {
+            let [a0, b0] = coefs[r.left];
+            let [a1, b1] = coefs[r.left + 1];
+            let c = [a0, b0, a1, b1];
+            let span = r.start..r.end;
+            for ((v, &fx), &sx) in out[span.clone()]
+                .iter_mut()
+                .zip(&t.fx[span.clone()])
+                .zip(&t.sx[span])
+            {
+                accumulate::<FIRST>(v, amp * combine_faded(&c, fx, sx));
+            }
+        }
+    }
+}
+
+/// Target number of samples per parallel band of rows.
+const BAND_SAMPLES: usize = 1 << 16;
+
 /// The fBm over the grid, normalized by the theoretical bound so every value lies in [-1, 1].
 ///
 /// Sample `(i, j)` is the noise at `x = i·dx`, `y = j·dy` in meters (see [`crate::grid`]);
-/// `data[j * nx + i]`. Rows are computed in parallel; the result does not depend on the
-/// number of threads. Panics on invalid parameters (see [`PerlinParams::validate`]).
+/// `data[j * nx + i]`. Bands of rows are computed in parallel; every sample goes through the
+/// same operations as in [`perlin_at`], so the result does not depend on the number of
+/// threads. Panics on invalid parameters (see [`PerlinParams::validate`]).
 pub fn perlin_field(spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
     check(spec, p);
     if spec.is_empty() {
@@ -437,20 +584,60 @@ pub fn perlin_field(spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
     }
     let octs = octaves(spec, p);
     let dx = spec.dx_m();
+    let nx = spec.nx;
+    let tables: Vec<XTable> = octs.iter().map(|o| XTable::new(o, nx, dx)).collect();
+    let band_rows = (BAND_SAMPLES / nx).clamp(1, 64);
     let mut out = vec![0.0f32; spec.len()];
-    out.par_chunks_mut(spec.nx)
+    let avx2 = has_avx2() && std::env::var("NOAVX").is_err();
+    out.par_chunks_mut(nx * band_rows)
         .enumerate()
-        .for_each(|(j, row)| {
-            let y = spec.y_m(j);
-            add_octave_row::<true>(&octs[0], y, dx, row);
-            for o in &octs[1..] {
-                add_octave_row::<false>(o, y, dx, row);
+        .for_each(|(b, band)| {
+            let y0 = b * band_rows;
+            #[cfg(target_arch = "x86_64")]
+            if avx2 {
+                // SAFETY: the CPU supports AVX2 (checked at run time).
+                unsafe { fill_band_avx2(spec, &octs, &tables, y0, band) };
+                return;
             }
-            for v in row.iter_mut() {
-                *v = v.clamp(-1.0, 1.0);
-            }
+            fill_band_portable(spec, &octs, &tables, y0, band);
         });
     out
+}
+
+#[cfg(target_arch = "x86_64")]
+fn has_avx2() -> bool {
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn has_avx2() -> bool {
+    false
+}
+
+/// Computes the rows of `band`, the first being row `y0` of the grid.
+#[inline(always)]
+fn fill_band(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
+    let mut scratch: Vec<OctaveScratch> = tables.iter().map(OctaveScratch::new).collect();
+    for (r, row) in band.chunks_mut(spec.nx).enumerate() {
+        let y = spec.y_m(y0 + r);
+        add_octave_row::<true>(&octs[0], &tables[0], &mut scratch[0], y, row);
+        for ((o, t), s) in octs.iter().zip(tables).zip(&mut scratch).skip(1) {
+            add_octave_row::<false>(o, t, s, y, row);
+        }
+        for v in row.iter_mut() {
+            *v = v.clamp(-1.0, 1.0);
+        }
+    }
+}
+
+fn fill_band_portable(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
+    fill_band(spec, octs, tables, y0, band)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn fill_band_avx2(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
+    fill_band(spec, octs, tables, y0, band)
 }
 
 /// The same value at one arbitrary point (x_m, y_m) in meters; agrees exactly with

@@ -91,26 +91,42 @@ mod tests {
         let deep = Dispersion::Finite { depth_m: 1e4 };
         for k in [0.01, 0.1, 1.0] {
             let w = Dispersion::Deep.omega(k);
-            assert!((deep.omega(k) - w).abs() <= REL * w, "deep limit at k = {k}");
+            assert!(
+                (deep.omega(k) - w).abs() <= REL * w,
+                "deep limit at k = {k}"
+            );
         }
         // Shallow: ω ≈ k·√(g d) when k d ≪ 1.
         let shallow = Dispersion::Finite { depth_m: 1.0 };
         let k = 1e-4;
         let c = shallow.omega(k) / k;
-        assert!((c - (G * 1.0f64).sqrt()).abs() < 1e-6 * c, "shallow limit {c}");
+        assert!(
+            (c - (G * 1.0f64).sqrt()).abs() < 1e-6 * c,
+            "shallow limit {c}"
+        );
     }
 
     #[test]
     fn wavenumber_inverts_omega_and_group_velocity_is_the_derivative() {
-        for d in [Dispersion::Deep, Dispersion::Finite { depth_m: 3.0 }, Dispersion::Finite { depth_m: 50.0 }] {
+        for d in [
+            Dispersion::Deep,
+            Dispersion::Finite { depth_m: 3.0 },
+            Dispersion::Finite { depth_m: 50.0 },
+        ] {
             for k in [0.003, 0.05, 0.4, 2.0, 30.0] {
                 let w = d.omega(k);
                 let back = d.wavenumber(w);
-                assert!((back - k).abs() <= 1e-12 * k, "{d:?}: k {k} → ω {w} → {back}");
+                assert!(
+                    (back - k).abs() <= 1e-12 * k,
+                    "{d:?}: k {k} → ω {w} → {back}"
+                );
                 let h = 1e-6 * k;
                 let numeric = (d.omega(k + h) - d.omega(k - h)) / (2.0 * h);
                 let cg = d.group_velocity(k);
-                assert!((cg - numeric).abs() <= 1e-6 * cg, "{d:?}: cg {cg} vs {numeric} at k {k}");
+                assert!(
+                    (cg - numeric).abs() <= 1e-6 * cg,
+                    "{d:?}: cg {cg} vs {numeric} at k {k}"
+                );
             }
         }
     }
