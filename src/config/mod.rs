@@ -253,9 +253,9 @@ pub struct OutputParams {
 }
 
 /// Phillips A of the default preset: gives the `li-tian` setting (512 m, 1 m grid,
-/// 7 m/s) an expected std of 0.26 m, i.e. Hs ≈ 1.05 m, the fully developed
-/// Pierson–Moskowitz sea at 7 m/s (Hs = 0.21·U²/g).
-pub const DEFAULT_PHILLIPS_A: f64 = 1.3e-7;
+/// 7 m/s) an expected std of 0.30 m, i.e. Hs ≈ 1.2 m, the Hs of seasynth's fully
+/// developed Pierson–Moskowitz sea at 7 m/s (4√m0 with fm = 0.13 g/U).
+pub const DEFAULT_PHILLIPS_A: f64 = 1.75e-7;
 
 impl Default for Params {
     fn default() -> Self {

@@ -9,27 +9,28 @@ use std::path::Path;
 use super::Params;
 use crate::error::{Error, Result};
 
+/// `(name, text)` of built-in presets, read from `presets/NAME.toml` at compile time.
+macro_rules! builtin_presets {
+    ($($name:literal),* $(,)?) => {
+        &[$(($name, include_str!(concat!("../../presets/", $name, ".toml")))),*]
+    };
+}
+
 /// Name and TOML text of every built-in preset.
-pub const BUILTIN: &[(&str, &str)] = &[
-    ("li-tian", include_str!("../../presets/li-tian.toml")),
-    (
-        "li-tian-fft",
-        include_str!("../../presets/li-tian-fft.toml"),
-    ),
-    (
-        "li-tian-perlin",
-        include_str!("../../presets/li-tian-perlin.toml"),
-    ),
-    ("li-tian-45", include_str!("../../presets/li-tian-45.toml")),
-    ("li-tian-90", include_str!("../../presets/li-tian-90.toml")),
-    (
-        "li-tian-135",
-        include_str!("../../presets/li-tian-135.toml"),
-    ),
-    (
-        "tessendorf-usc",
-        include_str!("../../presets/tessendorf-usc.toml"),
-    ),
+pub const BUILTIN: &[(&str, &str)] = builtin_presets![
+    "li-tian",
+    "li-tian-fft",
+    "li-tian-perlin",
+    "li-tian-45",
+    "li-tian-90",
+    "li-tian-135",
+    "tessendorf-usc",
+    "mastin-1987",
+    "fractal-terrain",
+    "calm",
+    "moderate",
+    "storm",
+    "swell",
 ];
 
 /// The preset used when none is named.

@@ -3,16 +3,20 @@
 pub mod fft;
 pub mod filtered_noise;
 pub mod hybrid;
+pub mod lines;
 pub mod perlin;
 pub mod weight;
 
 use serde::Serialize;
 
-use crate::config::{Beta, Method, Params, SpectrumModel};
+use crate::config::{Beta, Method, Params, SpectrumModel, SpreadingName};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::rng::{Stream, sub_seed};
-use crate::spectrum::{Dispersion, Phillips, Spectrum};
+use crate::spectrum::{
+    DirectionalSpectrum, Dispersion, Fractal, FrequencySpectrum, Jonswap, Phillips, PiersonMoskowitz, Spectrum,
+    Spreading, SpreadingModel, Tma,
+};
 
 /// What a synthesis found out along the way, recorded in the sidecar.
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -20,6 +24,12 @@ pub struct SynthesisInfo {
     /// max |h̃0(k)| over the resolved wavevectors, meters (FFT methods).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub h0max_m: Option<f64>,
+    /// The physical model's significant wave height 4√m0, meters.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_hs_m: Option<f64>,
+    /// The physical model's peak period 1/fp, seconds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_tp_s: Option<f64>,
     /// Phillips' largest wave L = V²/g, meters.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phillips_largest_wave_m: Option<f64>,
@@ -60,18 +70,68 @@ pub fn phillips(params: &Params) -> Phillips {
     )
 }
 
+/// A physical sea: its frequency spectrum, spreading, wind and dispersion relation.
+pub struct SeaModel {
+    pub freq: Box<dyn FrequencySpectrum>,
+    pub spreading: Spreading,
+    pub u10_mps: f64,
+    pub wind_dir_rad: f64,
+    pub dispersion: Dispersion,
+}
+
+/// The physical sea of validated `params` (`None` for `phillips` and `fractal`):
+/// from `--hs/--tp` when given, else from the wind (and fetch for JONSWAP and TMA).
+pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
+    let s = &params.spectrum;
+    let u = params.wind.speed_mps;
+    let fetch_m = s.fetch_km * 1000.0;
+    let hs_tp = s.hs_m.zip(s.tp_s);
+    let freq: Box<dyn FrequencySpectrum> = match (s.model, hs_tp) {
+        (SpectrumModel::PiersonMoskowitz, None) => Box::new(PiersonMoskowitz::from_wind(u)?),
+        (SpectrumModel::PiersonMoskowitz, Some((h, t))) => Box::new(PiersonMoskowitz::from_hs_tp(h, t)?),
+        (SpectrumModel::Jonswap, None) => Box::new(Jonswap::from_wind_fetch(u, fetch_m, s.gamma)?),
+        (SpectrumModel::Jonswap, Some((h, t))) => Box::new(Jonswap::from_hs_tp(h, t, s.gamma)?),
+        (SpectrumModel::Tma, hs_tp) => {
+            let depth = s.depth_m.expect("validated: tma has a depth");
+            Box::new(match hs_tp {
+                None => Tma::from_wind_fetch(u, fetch_m, s.gamma, depth)?,
+                Some((h, t)) => Tma::from_hs_tp(h, t, s.gamma, depth)?,
+            })
+        }
+        (SpectrumModel::Phillips | SpectrumModel::Fractal, _) => return Ok(None),
+    };
+    let model = match s.spreading {
+        SpreadingName::Cos2 => SpreadingModel::Cos2,
+        SpreadingName::Hasselmann => SpreadingModel::Hasselmann,
+        SpreadingName::Mitsuyasu => SpreadingModel::Mitsuyasu,
+        SpreadingName::DonelanBanner => SpreadingModel::DonelanBanner,
+    };
+    Ok(Some(SeaModel {
+        freq,
+        spreading: Spreading::new(model, s.swell)?,
+        u10_mps: u,
+        wind_dir_rad: params.wind.direction_deg.to_radians(),
+        dispersion: Dispersion::for_depth(s.depth_m),
+    }))
+}
+
 /// The spectrum model of validated `params` (E|h̃0(k)|² per wavevector), and the
-/// dispersion relation waves follow.
+/// dispersion relation waves follow (finite depth when `spectrum.depth_m` is set).
 pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)> {
+    let dispersion = Dispersion::for_depth(params.spectrum.depth_m);
     Ok(match params.spectrum.model {
-        SpectrumModel::Phillips => (Box::new(phillips(params)), Dispersion::Deep),
-        other => {
-            return Err(crate::error::ParamError {
-                name: "--spectrum (spectrum.model)".into(),
-                allowed: "phillips (the other models are being added)".into(),
-                got: crate::config::validate::model_name(other),
-            }
-            .into());
+        SpectrumModel::Phillips => (Box::new(phillips(params)), dispersion),
+        SpectrumModel::Fractal => {
+            let f = &params.fractal;
+            let spec = params.grid_spec();
+            let model = Fractal::new(f.dimension, f.relief_m, f.rolloff_m)?;
+            let on_grid = model.normalized_for(spec.nx, spec.ny, spec.extent_x_m, spec.extent_y_m);
+            (Box::new(on_grid), dispersion)
+        }
+        _ => {
+            let sea = sea_model(params)?.expect("a physical sea model");
+            let d = DirectionalSpectrum::new(sea.freq, sea.spreading, sea.wind_dir_rad, sea.u10_mps, sea.dispersion)?;
+            (Box::new(d), sea.dispersion)
         }
     })
 }
@@ -89,6 +149,10 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
         Method::Fft | Method::Hybrid | Method::FilteredNoise => {
             if params.spectrum.model == SpectrumModel::Phillips {
                 info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
+            }
+            if let Some(sea) = sea_model(params)? {
+                info.model_hs_m = Some(sea.freq.hs_m());
+                info.model_tp_s = Some(1.0 / sea.freq.peak_hz());
             }
             let (model, dispersion) = spectrum_model(params)?;
             let setup = fft::SpectrumSetup {

@@ -6,11 +6,21 @@
 //! With h̃(k,t) = h̃0(k)·e^{−iωt} + conj(h̃0(−k))·e^{iωt}, the expected variance of the
 //! field is Σ_k (E|h̃0(k)|² + E|h̃0(−k)|²).
 
+pub mod directional;
 pub mod dispersion;
+pub mod fractal;
+pub mod frequency;
+#[cfg(test)]
+mod invariants;
 pub mod phillips;
+pub mod spreading;
 
+pub use directional::DirectionalSpectrum;
 pub use dispersion::Dispersion;
+pub use fractal::{Fractal, FractalOnGrid};
+pub use frequency::{FrequencySpectrum, Jonswap, JonswapShape, PiersonMoskowitz, Tma};
 pub use phillips::Phillips;
+pub use spreading::{Spreading, SpreadingModel};
 
 /// Gravitational acceleration, m/s².
 pub const G: f64 = 9.81;

@@ -1,0 +1,564 @@
+//! Directional spreading D(f, θ): how the energy at frequency f is shared among the
+//! directions θ (radians from the wind direction), normalized so ∫_{−π}^{π} D dθ = 1.
+//!
+//! - `Cos2`: Phillips' |k̂·ŵ|²: D = cos²θ / π (two-sided).
+//! - `Hasselmann` (Mastin eq. 4–6, Thon eq. 8): D = cos^{2p}(θ/2) / N_p,
+//!   p = 9.77 (f/fm)^μ, μ = 4.06 below fm, −2.34 from fm up (fm = the spectrum's peak),
+//!   N_p = 2^{1−2p} π Γ(2p+1)/Γ(p+1)² = 2√π Γ(p+½)/Γ(p+1) = ∫cos^{2p}(θ/2) dθ.
+//! - `Mitsuyasu` (1975): cos^{2s}(θ/2) / N_s, s = s_max (f/fp)⁵ below fp,
+//!   s_max (f/fp)^{−2.5} from fp up, s_max = 11.5 (U10/c_p)^{2.5}, c_p = g/(2π fp)
+//!   (U10 < 0 counts as 0).
+//! - `DonelanBanner` (1985): D = β/(2 tanh βπ) · sech²(βθ), θ wrapped to (−π, π], with
+//!   r = f/fp: β = 2.61 r^{1.3} for r < 0.95, 2.28 r^{−1.3} for 0.95 ≤ r < 1.6,
+//!   10^{−0.4 + 0.8393 exp(−0.567 ln r²)} from 1.6 up. Below r = 0.56 (outside the fit's
+//!   data) β is held at its value at 0.56.
+//! - Swell (Horvath 2015): every model times |cos(θ/2)|^{2 s_ξ}, s_ξ = 16 tanh(fp/f) ξ²,
+//!   renormalized: for the cos^{2p}(θ/2) family the exponents add (N of the sum); for
+//!   `Cos2` the normalizer is exact by Wallis' recurrence,
+//!   ∫cos²θ cos^{2s}(θ/2) dθ = N_s (1 − 2(2s+1)/((2s+2)(s+2))); for `DonelanBanner` it is a
+//!   numerical integral (a composite Gauss–Legendre rule, relative error < 1e-12).
+//!
+//! `f ≤ 0` is taken as the limit f → 0⁺. The functions here are the reference
+//! implementation; [`DirectionalSpectrum`](super::DirectionalSpectrum) evaluates the same
+//! formulas through precomputed tables (see [`ln_np_fast`]).
+
+use std::sync::OnceLock;
+
+use crate::error::ParamError;
+use crate::fastmath::{exp, ln, sin_cos};
+
+use super::G;
+use super::frequency::{gauss_legendre, integrate};
+
+const PI: f64 = std::f64::consts::PI;
+const TWO_PI: f64 = 2.0 * PI;
+/// ln(2√π).
+const LN_2_SQRT_PI: f64 = 1.265_512_123_484_645_4;
+/// Largest allowed swell parameter ξ.
+pub const SWELL_MAX: f64 = 10.0;
+
+/// The spreading models.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpreadingModel {
+    Cos2,
+    Hasselmann,
+    Mitsuyasu,
+    DonelanBanner,
+}
+
+/// A validated spreading model with optional swell narrowing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spreading {
+    pub model: SpreadingModel,
+    /// ξ ≥ 0 (0 = off).
+    pub swell: f64,
+}
+
+impl Spreading {
+    /// `swell` = ξ in [0, 10].
+    pub fn new(model: SpreadingModel, swell: f64) -> Result<Self, ParamError> {
+        if !(0.0..=SWELL_MAX).contains(&swell) {
+            return Err(ParamError {
+                name: "spectrum.swell".into(),
+                allowed: "between 0 and 10".into(),
+                got: swell.to_string(),
+            });
+        }
+        Ok(Self { model, swell })
+    }
+
+    /// D(f, θ) in 1/rad, given the spectrum's peak frequency `fp_hz` > 0 and the wind
+    /// speed (used by `Mitsuyasu` only). θ is any real (2π-periodic).
+    pub fn density(&self, f_hz: f64, fp_hz: f64, u10_mps: f64, theta: f64) -> f64 {
+        let r = if f_hz > 0.0 { f_hz / fp_hz } else { 0.0 };
+        let theta = wrap_abs(theta);
+        let c = sin_cos(theta).1;
+        let sx = swell_exponent(r, self.swell);
+        match self.model {
+            SpreadingModel::Cos2 => {
+                if sx == 0.0 {
+                    c * c / PI
+                } else {
+                    c * c * exp(sx * ln_half_one_plus(c) - ln_z_cos2(sx))
+                }
+            }
+            SpreadingModel::Hasselmann | SpreadingModel::Mitsuyasu => {
+                let s = self.model_exponent(r, fp_hz, u10_mps) + sx;
+                exp(s * ln_half_one_plus(c) - ln_np(s))
+            }
+            SpreadingModel::DonelanBanner => {
+                let beta = donelan_banner_beta(r);
+                let sech2 = sech2(beta * theta);
+                if sx == 0.0 {
+                    beta / (2.0 * tanh(beta * PI)) * sech2
+                } else {
+                    sech2 * exp(sx * ln_half_one_plus(c)) / donelan_banner_norm(beta, sx)
+                }
+            }
+        }
+    }
+
+    /// The exponent s of cos^{2s}(θ/2) of `Hasselmann` (p) and `Mitsuyasu` (s) at
+    /// r = f/fp, without swell; 0 for the other models.
+    pub fn model_exponent(&self, r: f64, fp_hz: f64, u10_mps: f64) -> f64 {
+        match self.model {
+            SpreadingModel::Hasselmann => p_hasselmann(r, 1.0),
+            SpreadingModel::Mitsuyasu => mitsuyasu_s(r, 1.0, mitsuyasu_s_max(u10_mps, fp_hz)),
+            _ => 0.0,
+        }
+    }
+}
+
+/// |θ| wrapped to [0, π].
+#[inline]
+pub(crate) fn wrap_abs(theta: f64) -> f64 {
+    let t = theta.abs();
+    if t <= PI {
+        t
+    } else {
+        let w = t - TWO_PI * (t / TWO_PI).round();
+        w.abs()
+    }
+}
+
+/// ln((1 + c)/2) = ln cos²(θ/2) for c = cos θ, finite (clamped at the smallest normal).
+#[inline]
+pub(crate) fn ln_half_one_plus(c: f64) -> f64 {
+    ln((0.5 + 0.5 * c).max(f64::MIN_POSITIVE))
+}
+
+/// tanh x for x ≥ 0 with fastmath's exp (portable); relative error ≈ 1e-15.
+#[inline]
+pub(crate) fn tanh(x: f64) -> f64 {
+    if x < 0.01 {
+        let x2 = x * x;
+        x * (1.0 + x2 * (-1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (-17.0 / 315.0 + x2 * (62.0 / 2835.0)))))
+    } else if x > 20.0 {
+        1.0
+    } else {
+        let e = exp(-2.0 * x);
+        (1.0 - e) / (1.0 + e)
+    }
+}
+
+/// sech² x = 4e/(1 + e)², e = exp(−2|x|).
+#[inline]
+pub(crate) fn sech2(x: f64) -> f64 {
+    let e = exp(-2.0 * x.abs());
+    4.0 * e / ((1.0 + e) * (1.0 + e))
+}
+
+/// Swell exponent s_ξ = 16 tanh(1/r) ξ² at r = f/fp (r = 0: 16ξ²).
+#[inline]
+pub fn swell_exponent(r: f64, xi: f64) -> f64 {
+    if xi == 0.0 {
+        0.0
+    } else if r <= 0.0 {
+        16.0 * xi * xi
+    } else {
+        16.0 * tanh(1.0 / r) * xi * xi
+    }
+}
+
+/// Hasselmann's p = 9.77 (f/fm)^μ, μ = 4.06 for f < fm, −2.34 for f ≥ fm.
+pub fn p_hasselmann(f_hz: f64, fm_hz: f64) -> f64 {
+    if !(f_hz > 0.0) {
+        return 0.0;
+    }
+    let x = ln(f_hz / fm_hz);
+    9.77 * exp(if x < 0.0 { 4.06 } else { -2.34 } * x)
+}
+
+/// N_p = 2^{1−2p} π Γ(2p+1)/Γ(p+1)² = ∫_{−π}^{π} cos^{2p}(θ/2) dθ, p ≥ 0.
+pub fn np_hasselmann(p: f64) -> f64 {
+    exp(ln_np(p))
+}
+
+/// ln N_p, evaluated as ln(2√π) + ln Γ(p+½) − ln Γ(p+1) (the duplication formula turns
+/// Mastin's eq. 6 into this), by Lanczos below p = 64 and a Stirling expansion of the
+/// ratio above, so that large p neither overflows nor cancels. Accurate to ~1e-15.
+pub fn ln_np(p: f64) -> f64 {
+    if p < 64.0 {
+        LN_2_SQRT_PI + ln_gamma(p + 0.5) - ln_gamma(p + 1.0)
+    } else {
+        ln_np_large(p)
+    }
+}
+
+/// ln N_p for p ≥ 64: ln Γ(p+½) − ln Γ(p+1) = s ln(s+½) − (s+½) ln(s+1) + ½ + Δ_Stirling,
+/// with s ln(s+½) − (s+½) ln(s+1) = −½ ln(s+1) + s·ln(1 − 1/(2s+2)) (series for the log1p).
+fn ln_np_large(s: f64) -> f64 {
+    let y = -0.5 / (s + 1.0);
+    // ln(1 + y), |y| ≤ 1/130: the series to y^10 is exact to double precision.
+    let mut term = y;
+    let mut l1p = 0.0;
+    for n in 1..=10 {
+        l1p += term / n as f64;
+        term *= -y;
+    }
+    let stirling = |z: f64| {
+        let iz = 1.0 / z;
+        let iz2 = iz * iz;
+        iz * (1.0 / 12.0 - iz2 * (1.0 / 360.0 - iz2 * (1.0 / 1260.0 - iz2 / 1680.0)))
+    };
+    LN_2_SQRT_PI - 0.5 * ln(s + 1.0) + s * l1p + 0.5 + stirling(s + 0.5) - stirling(s + 1.0)
+}
+
+/// ln Γ(x) for x > 0: Lanczos (g = 7, 9 terms) for x ≥ ½, reflection below.
+/// Absolute error ≲ 1e-14 for x ≤ 100 (relative ≲ 1e-15 away from the zeros at 1 and 2).
+pub fn ln_gamma(x: f64) -> f64 {
+    const COEF: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    if x < 0.5 {
+        // Γ(x)Γ(1−x) = π / sin(πx).
+        return ln(PI / sin_cos(PI * x).0) - ln_gamma(1.0 - x);
+    }
+    let x = x - 1.0;
+    let mut a = COEF[0];
+    for (i, c) in COEF.iter().enumerate().skip(1) {
+        a += c / (x + i as f64);
+    }
+    let t = x + 7.5;
+    0.5 * ln(TWO_PI) + (x + 0.5) * ln(t) - t + ln(a)
+}
+
+/// ln ∫cos²θ cos^{2s}(θ/2) dθ = ln N_s + ln(1 − 2(2s+1)/((2s+2)(s+2))) (Wallis).
+pub(crate) fn ln_z_cos2(s: f64) -> f64 {
+    ln_np(s) + ln(1.0 - 2.0 * (2.0 * s + 1.0) / ((2.0 * s + 2.0) * (s + 2.0)))
+}
+
+/// Mitsuyasu's s_max = 11.5 (U10/c_p)^{2.5}, c_p = g/(2π fp); 0 for U10 ≤ 0.
+pub fn mitsuyasu_s_max(u10_mps: f64, fp_hz: f64) -> f64 {
+    if !(u10_mps > 0.0) {
+        return 0.0;
+    }
+    let cp = G / (TWO_PI * fp_hz);
+    11.5 * exp(2.5 * ln(u10_mps / cp))
+}
+
+/// Mitsuyasu's s = s_max (f/fp)⁵ for f < fp, s_max (f/fp)^{−2.5} from fp up.
+pub fn mitsuyasu_s(f_hz: f64, fp_hz: f64, s_max: f64) -> f64 {
+    if !(f_hz > 0.0) {
+        return 0.0;
+    }
+    let x = ln(f_hz / fp_hz);
+    s_max * exp(if x < 0.0 { 5.0 } else { -2.5 } * x)
+}
+
+/// Donelan–Banner β at r = f/fp (r < 0.56 is held at 0.56).
+pub fn donelan_banner_beta(r: f64) -> f64 {
+    let r = r.max(DB_R_MIN);
+    db_beta_branch(db_branch(r), ln(r))
+}
+
+pub(crate) const DB_R_MIN: f64 = 0.56;
+pub(crate) const DB_R_1: f64 = 0.95;
+pub(crate) const DB_R_2: f64 = 1.6;
+
+/// 0: r < 0.95, 1: 0.95 ≤ r < 1.6, 2: r ≥ 1.6.
+#[inline]
+pub(crate) fn db_branch(r: f64) -> usize {
+    if r < DB_R_1 {
+        0
+    } else if r < DB_R_2 {
+        1
+    } else {
+        2
+    }
+}
+
+/// The formula of branch `b` at x = ln r (extends analytically past the branch ends).
+#[inline]
+pub(crate) fn db_beta_branch(b: usize, x: f64) -> f64 {
+    match b {
+        0 => 2.61 * exp(1.3 * x),
+        1 => 2.28 * exp(-1.3 * x),
+        _ => exp(std::f64::consts::LN_10 * (-0.4 + 0.8393 * exp(-1.134 * x))),
+    }
+}
+
+/// ∫_{−π}^{π} sech²(βθ) cos^{2s}(θ/2) dθ, numerically: 2∫_0^{θc}, θc = min(π, √(160/s))
+/// (cos^{2s}(θ/2) ≤ e^{−sθ²/4} < e^{−40} beyond), 16 panels of 10-point Gauss–Legendre.
+pub(crate) fn donelan_banner_norm(beta: f64, s: f64) -> f64 {
+    let rule = gl10();
+    let cut = if s > 0.0 { (160.0 / s).sqrt().min(PI) } else { PI };
+    2.0 * integrate(
+        |t| sech2(beta * t) * exp(s * ln_half_one_plus(sin_cos(t).1)),
+        0.0,
+        cut,
+        16,
+        rule,
+    )
+}
+
+fn gl10() -> &'static [(f64, f64)] {
+    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(10))
+}
+
+/// A function tabulated on a uniform grid over [x0, x0 + n h] (plus one node before and
+/// two after), interpolated by 4-point Lagrange cubics centred on the interval; `C`
+/// columns share the grid.
+#[derive(Debug, Clone)]
+pub(crate) struct UniformTable<const C: usize> {
+    x0: f64,
+    inv_h: f64,
+    n: usize,
+    v: Vec<[f64; C]>,
+}
+
+impl<const C: usize> UniformTable<C> {
+    pub(crate) fn build(x0: f64, x1: f64, n: usize, mut f: impl FnMut(f64) -> [f64; C]) -> Self {
+        let h = (x1 - x0) / n as f64;
+        let v = (0..n + 3).map(|j| f(x0 + (j as f64 - 1.0) * h)).collect();
+        Self {
+            x0,
+            inv_h: 1.0 / h,
+            n,
+            v,
+        }
+    }
+
+    /// Interpolated columns at `x` (clamped to the table's interval).
+    #[inline]
+    pub(crate) fn eval(&self, x: f64) -> [f64; C] {
+        let t = ((x - self.x0) * self.inv_h).max(0.0);
+        let i = (t as usize).min(self.n - 1);
+        let u = (t - i as f64).min(1.0);
+        // Lagrange weights for nodes at −1, 0, 1, 2.
+        let um1 = u - 1.0;
+        let um2 = u - 2.0;
+        let up1 = u + 1.0;
+        let w0 = -u * um1 * um2 * (1.0 / 6.0);
+        let w1 = up1 * um1 * um2 * 0.5;
+        let w2 = -up1 * u * um2 * 0.5;
+        let w3 = up1 * u * um1 * (1.0 / 6.0);
+        let v = &self.v[i..i + 4];
+        let mut out = [0.0; C];
+        for (c, o) in out.iter_mut().enumerate() {
+            *o = w0 * v[0][c] + w1 * v[1][c] + w2 * v[2][c] + w3 * v[3][c];
+        }
+        out
+    }
+}
+
+/// Tables of ln N_s and ln Z_cos2(s) for 0 ≤ s < 64 (steps 1/256 below 4 and 1/16 above;
+/// interpolation error < 1e-9).
+struct STables {
+    low: UniformTable<2>,
+    high: UniformTable<2>,
+}
+
+fn s_tables() -> &'static STables {
+    static T: OnceLock<STables> = OnceLock::new();
+    T.get_or_init(|| {
+        let f = |s: f64| [ln_np(s), ln_z_cos2(s)];
+        STables {
+            low: UniformTable::build(0.0, 4.0, 1024, f),
+            high: UniformTable::build(4.0, 64.0, 960, f),
+        }
+    })
+}
+
+/// Forces the static tables to be built (so the first evaluation is not slow).
+pub(crate) fn init_tables() {
+    let _ = s_tables();
+    let _ = swell_table();
+}
+
+/// ln N_s, tabulated (s < 64) or by the Stirling form; agrees with [`ln_np`] to ~1e-9.
+#[inline]
+pub fn ln_np_fast(s: f64) -> f64 {
+    let t = s_tables();
+    if s < 4.0 {
+        t.low.eval(s)[0]
+    } else if s < 64.0 {
+        t.high.eval(s)[0]
+    } else {
+        ln_np_large(s)
+    }
+}
+
+/// ln Z_cos2(s), tabulated (s < 64) or exact.
+#[inline]
+pub(crate) fn ln_z_cos2_fast(s: f64) -> f64 {
+    let t = s_tables();
+    if s < 4.0 {
+        t.low.eval(s)[1]
+    } else if s < 64.0 {
+        t.high.eval(s)[1]
+    } else {
+        ln_z_cos2(s)
+    }
+}
+
+/// tanh(e^{−x}) on x ∈ [−4, 12], step 1/64 (error < 1e-10).
+fn swell_table() -> &'static UniformTable<1> {
+    static T: OnceLock<UniformTable<1>> = OnceLock::new();
+    T.get_or_init(|| UniformTable::build(-4.0, 12.0, 1024, |x| [tanh(exp(-x))]))
+}
+
+/// tanh(fp/f) at x = ln(f/fp), tabulated.
+#[inline]
+pub(crate) fn swell_tanh_fast(x: f64) -> f64 {
+    if x <= -4.0 {
+        // tanh(e⁴ = 54.6) = 1 to double precision.
+        1.0
+    } else if x < 12.0 {
+        swell_table().eval(x)[0]
+    } else {
+        let y = exp(-x);
+        y * (1.0 - y * y / 3.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs()
+    }
+
+    /// ∫_{−π}^{π} g dθ by 400 panels of 10-point Gauss–Legendre.
+    fn integrate_theta(g: impl Fn(f64) -> f64) -> f64 {
+        integrate(g, -PI, PI, 400, &gauss_legendre(10))
+    }
+
+    #[test]
+    fn ln_gamma_matches_known_values() {
+        const TOL: f64 = 1e-13;
+        let cases = [
+            (0.5, 0.572_364_942_924_700_1),    // ln √π
+            (1.0, 0.0),
+            (2.0, 0.0),
+            (3.0, std::f64::consts::LN_2),
+            (10.0, 12.801_827_480_081_469),    // ln 9!
+            (0.1, 2.252_712_651_734_206),      // ln Γ(0.1)
+            (2.5, 0.284_682_870_472_919_2),    // ln(1.329340388…)
+            (100.0, 359.134_205_369_575_4),    // ln 99!
+        ];
+        for (x, want) in cases {
+            let got = ln_gamma(x);
+            assert!((got - want).abs() <= TOL * want.abs().max(1.0), "lnΓ({x}) = {got}, want {want}");
+        }
+    }
+
+    #[test]
+    fn np_matches_mastins_formula_and_a_direct_integral() {
+        const REL_INT: f64 = 1e-11;
+        for p in [0.0, 0.3, 1.0, 2.5, 9.77, 30.0, 63.9, 64.0, 200.0, 3000.0] {
+            let direct = integrate_theta(|t| exp(p * ln_half_one_plus(sin_cos(t).1)));
+            let np = np_hasselmann(p);
+            assert!(rel(np, direct) < REL_INT, "N_{p} = {np}, ∫ = {direct}");
+            if p < 60.0 {
+                // Mastin eq. 6 literally, in logs.
+                let lit = (1.0 - 2.0 * p) * std::f64::consts::LN_2 + ln(PI) + ln_gamma(2.0 * p + 1.0)
+                    - 2.0 * ln_gamma(p + 1.0);
+                assert!((lit - ln_np(p)).abs() < 1e-12, "eq. 6 at p = {p}: {lit} vs {}", ln_np(p));
+            }
+        }
+        assert!(rel(np_hasselmann(0.0), TWO_PI) < 1e-15);
+        assert!(rel(np_hasselmann(1.0), PI) < 1e-14, "N_1 = π");
+        // The two ln N forms meet continuously at 64.
+        assert!((ln_np_large(64.0) - (LN_2_SQRT_PI + ln_gamma(64.5) - ln_gamma(65.0))).abs() < 1e-13);
+        assert!((ln_np_large(150.0) - (LN_2_SQRT_PI + ln_gamma(150.5) - ln_gamma(151.0))).abs() < 1e-12);
+    }
+
+    #[test]
+    fn p_hasselmann_at_hand_picked_frequencies() {
+        const TOL: f64 = 1e-13;
+        let fm = 0.1;
+        assert!(rel(p_hasselmann(fm, fm), 9.77) < TOL);
+        assert!(rel(p_hasselmann(0.5 * fm, fm), 9.77 * 0.5f64.powf(4.06)) < TOL);
+        assert!(rel(p_hasselmann(2.0 * fm, fm), 9.77 * 2.0f64.powf(-2.34)) < TOL);
+        assert!(rel(p_hasselmann(0.05, 0.1), 0.585_751) < 1e-5, "{}", p_hasselmann(0.05, 0.1));
+        assert_eq!(p_hasselmann(0.0, fm), 0.0);
+    }
+
+    #[test]
+    fn tables_match_the_exact_functions() {
+        const TOL: f64 = 2e-9;
+        for i in 0..20_000 {
+            let s = i as f64 * 0.0041;
+            assert!((ln_np_fast(s) - ln_np(s)).abs() < TOL, "ln N at {s}");
+            assert!((ln_z_cos2_fast(s) - ln_z_cos2(s)).abs() < TOL, "ln Zc at {s}");
+        }
+        for i in 0..4000 {
+            let x = -5.0 + i as f64 * 0.0047;
+            let want = tanh(exp(-x));
+            assert!((swell_tanh_fast(x) - want).abs() < 1e-10 * want, "tanh table at {x}");
+        }
+        // Wallis' Cos2 normalizer against a direct integral.
+        for s in [0.0, 0.5, 3.0, 40.0, 500.0] {
+            let direct = integrate_theta(|t| {
+                let c = sin_cos(t).1;
+                c * c * exp(s * ln_half_one_plus(c))
+            });
+            assert!(rel(exp(ln_z_cos2(s)), direct) < 1e-11, "Z_cos2({s})");
+        }
+    }
+
+    #[test]
+    fn donelan_banner_beta_branches() {
+        const TOL: f64 = 1e-13;
+        assert!(rel(donelan_banner_beta(0.8), 2.61 * 0.8f64.powf(1.3)) < TOL);
+        assert!(rel(donelan_banner_beta(1.2), 2.28 * 1.2f64.powf(-1.3)) < TOL);
+        let r: f64 = 3.0;
+        let want = 10f64.powf(-0.4 + 0.8393 * (-0.567 * (r * r).ln()).exp());
+        assert!(rel(donelan_banner_beta(r), want) < TOL);
+        // Clamp below 0.56.
+        assert_eq!(donelan_banner_beta(0.1), donelan_banner_beta(0.56));
+        assert_eq!(donelan_banner_beta(0.0), donelan_banner_beta(0.56));
+    }
+
+    #[test]
+    fn mitsuyasu_s_by_hand() {
+        // U = 15, fp = 0.1 Hz: c_p = 9.81/(0.2π) = 15.613 m/s, s_max = 11.5·(15/15.613)^2.5.
+        let smax = mitsuyasu_s_max(15.0, 0.1);
+        let cp = G / (TWO_PI * 0.1);
+        assert!(rel(smax, 11.5 * (15.0 / cp).powf(2.5)) < 1e-13);
+        assert!(rel(smax, 10.404) < 1e-3, "s_max {smax}");
+        assert!(rel(mitsuyasu_s(0.05, 0.1, smax), smax / 32.0) < 1e-13);
+        assert!(rel(mitsuyasu_s(0.4, 0.1, smax), smax / 32.0) < 1e-13);
+        assert_eq!(mitsuyasu_s_max(-1.0, 0.1), 0.0);
+    }
+
+    #[test]
+    fn new_validates_swell() {
+        assert!(Spreading::new(SpreadingModel::Cos2, 0.0).is_ok());
+        assert!(Spreading::new(SpreadingModel::Cos2, 10.0).is_ok());
+        let e = Spreading::new(SpreadingModel::Hasselmann, -0.1).unwrap_err();
+        assert_eq!((e.name.as_str(), e.allowed.as_str(), e.got.as_str()), ("spectrum.swell", "between 0 and 10", "-0.1"));
+        assert!(Spreading::new(SpreadingModel::Hasselmann, f64::NAN).is_err());
+        assert!(Spreading::new(SpreadingModel::Hasselmann, 10.5).is_err());
+    }
+
+    #[test]
+    fn periodic_in_theta_and_cos2_is_phillips() {
+        let sp = Spreading::new(SpreadingModel::Cos2, 0.0).unwrap();
+        for t in [0.0f64, 0.4, 1.0, 2.0, 3.0] {
+            let want = t.cos().powi(2) / PI;
+            assert!((sp.density(0.1, 0.1, 10.0, t) - want).abs() < 1e-15, "cos²θ/π at {t}");
+        }
+        for model in [SpreadingModel::Cos2, SpreadingModel::Hasselmann, SpreadingModel::Mitsuyasu, SpreadingModel::DonelanBanner] {
+            let sp = Spreading::new(model, 0.7).unwrap();
+            for t in [0.0, 0.3, 1.7, 3.0] {
+                let a = sp.density(0.13, 0.1, 12.0, t);
+                for shift in [TWO_PI, -TWO_PI, 3.0 * TWO_PI] {
+                    let b = sp.density(0.13, 0.1, 12.0, t + shift);
+                    assert!((a - b).abs() <= 1e-12 * a.max(1e-300), "{model:?} at {t} + {shift}");
+                }
+            }
+        }
+    }
+}
