@@ -36,6 +36,9 @@
 //!   (`Spectrum::amplitude_variance`), over the wavevectors the synthesis uses (no mean,
 //!   no Nyquist row or column). For the hybrid blend only the α = 1 region follows the
 //!   spectrum, so there is no target (`"target": null` and a `target_note`).
+//! - **Plot.** `--plot FILE.png`: S(k) on log–log axes, 800×500 8-bit RGB: the measured
+//!   curve (blue; pale blue beyond the Nyquist circle), the target (red) and the peak
+//!   (dashed). Values below the bottom of the axis (8 decades under the top) are drawn on it.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -49,7 +52,7 @@ use serde_json::Value;
 
 use crate::config::Params;
 use crate::error::Error;
-use crate::export::HeightMapping;
+use crate::export::{HeightMapping, Staged};
 use crate::field::fft::{is_resolved, signed_index};
 use crate::grid::{Grid, GridSpec};
 use crate::spectrum::Spectrum;
@@ -62,7 +65,7 @@ pub struct AnalyzeArgs {
     /// Print one JSON object on stdout instead of the report
     #[arg(long)]
     pub json: bool,
-    /// Write a log-log plot of the measured (and target) radial spectrum
+    /// Write a log-log plot of the measured (and target) radial spectrum S(k), 800×500 PNG
     #[arg(long, value_name = "PNG")]
     pub plot: Option<PathBuf>,
 }
@@ -799,13 +802,13 @@ struct Report<'a> {
 
 /// Runs `seasynth analyze`.
 pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
-    if let Some(plot) = &args.plot {
-        return Err(Error::Output {
-            path: plot.clone(),
-            message: "plotting is not available yet".into(),
-        }
-        .into());
-    }
+    // The plot file is staged before any work: a bad path fails now, and an error later
+    // leaves no partial file.
+    let plot = args
+        .plot
+        .as_deref()
+        .map(|p| stage_plot(p, &args.file))
+        .transpose()?;
     let loaded = load_detailed(&args.file)?;
     let (target, note) = match &loaded.sidecar {
         Some(doc) => match Target::from_sidecar(doc, &loaded.grid.spec) {
@@ -828,6 +831,15 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         quantization_step_m: loaded.quantization_step_m,
         analysis: &analysis,
     };
+    if let Some(staged) = plot {
+        let name = args
+            .file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| report.file.clone());
+        let image = render_plot(&analysis, &name).map_err(|e| Error::io(&staged.path, e))?;
+        write_rgb_png(staged, &image, PLOT_SIZE)?;
+    }
     let mut out = std::io::stdout().lock();
     if args.json {
         serde_json::to_writer(&mut out, &report)?;
@@ -836,6 +848,247 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(&mut out, human_report(&report).as_bytes())?;
     }
     Ok(())
+}
+
+/// Size of the `--plot` image, pixels.
+pub const PLOT_SIZE: (u32, u32) = (800, 500);
+/// Decades of S(k) shown below the highest value.
+const PLOT_DECADES: f64 = 8.0;
+/// Font of every text in the plot.
+const FONT: &str = "sans-serif";
+
+/// Checks a plot path (a `.png`, not the analyzed file) and stages it.
+fn stage_plot(path: &Path, input: &Path) -> Result<Staged, Error> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref() != Some("png") {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "plots are PNG images: the file name must end in .png".into(),
+        });
+    }
+    let same = match (std::fs::canonicalize(path), std::fs::canonicalize(input)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => path == input,
+    };
+    if same {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "is the file being analyzed".into(),
+        });
+    }
+    Staged::create(path)
+}
+
+/// Encodes an RGB buffer as an 8-bit RGB PNG into the staged file.
+fn write_rgb_png(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
+    staged.write_with(|out| {
+        let mut enc = png::Encoder::new(out, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+        writer
+            .write_image_data(rgb)
+            .map_err(std::io::Error::other)?;
+        writer.finish().map_err(std::io::Error::other)
+    })
+}
+
+/// A drawing error as an I/O error (a failure while working: exit code 1).
+fn draw_err<E: std::fmt::Display>(e: E) -> std::io::Error {
+    std::io::Error::other(format!("cannot draw the plot: {e}"))
+}
+
+/// A number with 3 significant digits and no trailing zeros (`0.0123`, `45.6`, `1e-5`).
+fn short_number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor();
+    if !(-3.0..5.0).contains(&mag) {
+        return format!("{v:.0e}");
+    }
+    let decimals = (2.0 - mag).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Draws the measured (and target) S(k) of `a` on log–log axes into an RGB buffer of
+/// [`PLOT_SIZE`]; `name` heads the title.
+pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
+    use plotters::prelude::*;
+
+    let (w, h) = PLOT_SIZE;
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let bins = &a.radial_spectrum;
+    let highest = bins
+        .iter()
+        .flat_map(|b| {
+            [
+                b.s_m2_per_rad_per_m,
+                b.target_s_m2_per_rad_per_m.unwrap_or(0.0),
+            ]
+        })
+        .fold(0.0f64, f64::max);
+    let lowest = bins
+        .iter()
+        .flat_map(|b| {
+            [
+                b.s_m2_per_rad_per_m,
+                b.target_s_m2_per_rad_per_m.unwrap_or(0.0),
+            ]
+        })
+        .filter(|&v| v > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let (y_lo, y_hi) = if highest > 0.0 {
+        let hi = 10f64.powf((highest * 2.0).log10().ceil());
+        let lo = 10f64
+            .powf(lowest.log10().floor())
+            .max(hi * 10f64.powf(-PLOT_DECADES));
+        (lo, hi)
+    } else {
+        (1e-6, 1.0)
+    };
+    let k_lo = bins.first().map_or(a.dk_rad_per_m, |b| b.k_rad_per_m) / 1.1;
+    let k_hi = bins.last().map_or(10.0 * a.dk_rad_per_m, |b| b.k_rad_per_m) * 1.1;
+    let k_hi = k_hi.max(k_lo * 10.0);
+    let clamp = |v: f64| v.clamp(y_lo, y_hi);
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let (head, body) = root.split_vertically(62);
+        head.draw(&Text::new(
+            format!("{name}: radial wavenumber spectrum S(k)"),
+            (12, 8),
+            (FONT, 22).into_font().style(FontStyle::Bold),
+        ))
+        .map_err(draw_err)?;
+        let mut sub = format!(
+            "{}×{} over {}×{} m  ·  Hs {} m",
+            a.nx,
+            a.ny,
+            short_number(a.extent_m[0]),
+            short_number(a.extent_m[1]),
+            short_number(a.hs_m)
+        );
+        if let Some(t) = &a.target {
+            sub += &format!(
+                "  ·  target Hs {} m, variance ratio {}",
+                short_number(t.target_hs_m),
+                t.variance_ratio.map_or("-".into(), |r| format!("{r:.3}"))
+            );
+        }
+        head.draw(&Text::new(sub, (12, 36), (FONT, 16)))
+            .map_err(draw_err)?;
+        let mut chart = ChartBuilder::on(&body)
+            .margin_left(10)
+            .margin_right(25)
+            .margin_top(8)
+            .margin_bottom(8)
+            .x_label_area_size(45)
+            .y_label_area_size(75)
+            .build_cartesian_2d((k_lo..k_hi).log_scale(), (y_lo..y_hi).log_scale())
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("wavenumber k (rad/m)")
+            .y_desc("S(k) (m²/(rad/m))")
+            .x_label_formatter(&|v| short_number(*v))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .axis_desc_style((FONT, 17))
+            .label_style((FONT, 14))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(205, 205, 205))
+            .draw()
+            .map_err(draw_err)?;
+        let blue = RGBColor(30, 90, 200);
+        let pale = RGBColor(150, 180, 230);
+        let red = RGBColor(200, 30, 30);
+        let gray = RGBColor(90, 90, 90);
+        let complete: Vec<(f64, f64)> = bins
+            .iter()
+            .filter(|b| b.complete)
+            .map(|b| (b.k_rad_per_m, clamp(b.s_m2_per_rad_per_m)))
+            .collect();
+        // Bins beyond the Nyquist circle start from the last complete one.
+        let partial: Vec<(f64, f64)> = bins
+            .iter()
+            .enumerate()
+            .filter(|(i, b)| !b.complete || bins.get(i + 1).is_some_and(|n| !n.complete))
+            .map(|(_, b)| (b.k_rad_per_m, clamp(b.s_m2_per_rad_per_m)))
+            .collect();
+        // The target first, so the measured curve stays visible over it.
+        if let Some(t) = &a.target {
+            let curve: Vec<(f64, f64)> = bins
+                .iter()
+                .map(|b| {
+                    (
+                        b.k_rad_per_m,
+                        clamp(b.target_s_m2_per_rad_per_m.unwrap_or(0.0)),
+                    )
+                })
+                .collect();
+            chart
+                .draw_series(LineSeries::new(curve, red.stroke_width(2)))
+                .map_err(draw_err)?
+                .label(format!(
+                    "target: expected S(k), {} ({})",
+                    t.spectrum, t.method
+                ))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], red.stroke_width(2))
+                });
+        }
+        chart
+            .draw_series(LineSeries::new(complete, blue.stroke_width(2)))
+            .map_err(draw_err)?
+            .label("measured")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], blue.stroke_width(2))
+            });
+        if partial.len() > 1 {
+            chart
+                .draw_series(LineSeries::new(partial, pale.stroke_width(2)))
+                .map_err(draw_err)?
+                .label("measured, beyond Nyquist (partial annuli)")
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], pale.stroke_width(2))
+                });
+        }
+        if let (Some(kp), Some(wl)) = (a.peak_k_rad_per_m, a.peak_wavelength_m) {
+            let dir = a
+                .peak_direction_deg
+                .map_or(String::new(), |d| format!(", {d:.1}° (mod 180°)"));
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(kp, y_lo), (kp, y_hi)],
+                    6,
+                    4,
+                    gray.stroke_width(1),
+                ))
+                .map_err(draw_err)?
+                .label(format!("peak: λ = {} m{dir}", short_number(wl)))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], gray.stroke_width(1))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .label_font((FONT, 15))
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()
+            .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(buf)
 }
 
 fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
@@ -859,7 +1112,12 @@ fn human_report(r: &Report) -> String {
     );
     s += &format!(
         "heights: mean {:.4} m, std {:.4} m, Hs (4·std) {:.4} m, min {:.4} m, max {:.4} m\n",
-        a.mean_m, a.std_m, a.hs_m, a.min_m, a.max_m
+        // A mean of −0.00001 m would print as "-0.0000".
+        if a.mean_m.abs() < 5e-5 { 0.0 } else { a.mean_m },
+        a.std_m,
+        a.hs_m,
+        a.min_m,
+        a.max_m
     );
     if let Some(q) = r.quantization_step_m {
         s += &format!("16-bit step: {q:.3e} m\n");
@@ -978,6 +1236,42 @@ mod tests {
         assert_eq!(a.peak_direction_deg, None);
         assert_eq!(a.std_m, 0.0);
         assert!(serde_json::to_string(&a).is_ok());
+    }
+
+    #[test]
+    fn tiny_and_one_dimensional_grids_are_analyzed_without_panicking() {
+        for (nx, ny) in [(1, 1), (1, 5), (5, 1), (2, 2), (3, 1)] {
+            let data = (0..nx * ny).map(|v| v as f32).collect();
+            let g = Grid::new(GridSpec::new(nx, ny, nx as f64, ny as f64), data);
+            let a = analyze(&g, None);
+            let total: f64 = a.radial_spectrum.iter().map(|b| b.power_m2).sum();
+            let var = a.std_m * a.std_m;
+            assert!(
+                (total - var).abs() <= PARSEVAL_REL_TOL * var.max(1e-300),
+                "{nx}×{ny}"
+            );
+            assert!(serde_json::to_string(&a).is_ok());
+        }
+    }
+
+    #[test]
+    fn plot_labels_are_short_numbers() {
+        assert_eq!(short_number(0.0123456), "0.0123");
+        assert_eq!(short_number(45.0), "45");
+        assert_eq!(short_number(1234.6), "1235");
+        assert_eq!(short_number(2e-5), "2e-5");
+    }
+
+    #[test]
+    fn the_plot_renders_for_a_cosine_and_for_a_flat_field() {
+        for g in [
+            cosine(64, 64.0, 8.0, 30.0, 1.0),
+            Grid::new(GridSpec::new(8, 8, 8.0, 8.0), vec![0.5; 64]),
+        ] {
+            let rgb = render_plot(&analyze(&g, None), "test").unwrap();
+            assert_eq!(rgb.len(), (PLOT_SIZE.0 * PLOT_SIZE.1 * 3) as usize);
+            assert!(rgb.iter().any(|&v| v != 255), "something is drawn");
+        }
     }
 
     #[test]

@@ -20,6 +20,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Presets { name } => list_presets(name.as_deref()),
         Command::Analyze(args) => crate::analyze::run(args),
         Command::Bench(args) => crate::bench::run(args),
+        Command::Spectrum(args) => crate::spectrum_cmd::run(args),
     }
 }
 

@@ -30,6 +30,8 @@ pub enum Command {
     Analyze(crate::analyze::AnalyzeArgs),
     /// Time each stage (spectrum, FFT, Perlin, blend, writers) against a bare 2D real FFT
     Bench(BenchArgs),
+    /// The model spectrum: F(f) at given frequencies (--json, --csv), or plots of F(f) and Ψ(kx, ky)
+    Spectrum(crate::spectrum_cmd::SpectrumArgs),
 }
 
 /// Parameters of one field: a preset, then `--set` and flags over it.

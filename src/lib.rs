@@ -12,3 +12,4 @@ pub mod field;
 pub mod grid;
 pub mod rng;
 pub mod spectrum;
+pub mod spectrum_cmd;

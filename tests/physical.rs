@@ -158,3 +158,55 @@ fn the_sidecar_records_the_model_hs_and_peak_period() {
     assert!((hs - 4.0 * m0.sqrt()).abs() < 1e-9 * hs, "Hs {hs}");
     assert!((tp - 1.0 / fm).abs() < 1e-9 * tp, "Tp {tp}");
 }
+
+/// Mastin's method: the measured spectrum has the target's shape, and the long crests
+/// run across the wind (the energy's direction is the wind's, modulo 180°).
+#[test]
+fn filtered_noise_has_the_target_spectrum_and_crests_across_the_wind() {
+    use seasynth::analyze::{Target, analyze};
+    // Bins hold hundreds of wavevectors at this size: one field's binned spectrum is
+    // within ~10 % of its expectation, i.e. ~0.05 in log10.
+    const LOG10_RMS_TOL: f64 = 0.08;
+    const VARIANCE_TOL: f64 = 0.1;
+    const DIRECTION_TOL_DEG: f64 = 10.0;
+    for dir in [0.0, 45.0, 120.0] {
+        let p = params(&[
+            "method=filtered-noise",
+            "spectrum=pierson-moskowitz",
+            "wind-speed=15",
+            &format!("wind-dir={dir}"),
+            "size=512",
+            "extent=2048",
+        ]);
+        let grid = synthesize(&p).unwrap().grid;
+        let (spectrum, _) = spectrum_model(&p).unwrap();
+        let target = Target {
+            spectrum,
+            spec: p.grid_spec(),
+            method: "filtered-noise".into(),
+            model: "pierson-moskowitz".into(),
+        };
+        let a = analyze(&grid, Some(&target));
+        let t = a.target.as_ref().expect("a target summary");
+        let rms = t.log10_rms_difference.expect("bins compared");
+        eprintln!(
+            "wind {dir}°: log10 RMS {rms:.4} over {} bins, variance ratio {:.4}, peak direction {:?}°, peak wavelength {:?} m (target {:?} m)",
+            t.bins_compared,
+            t.variance_ratio.unwrap(),
+            a.peak_direction_deg,
+            a.peak_wavelength_m,
+            t.target_peak_wavelength_m
+        );
+        assert!(t.bins_compared >= 10, "too few bins compared: {}", t.bins_compared);
+        assert!(rms <= LOG10_RMS_TOL, "wind {dir}°: spectrum shape off by {rms} in log10 RMS");
+        let ratio = t.variance_ratio.unwrap();
+        assert!((ratio - 1.0).abs() <= VARIANCE_TOL, "wind {dir}°: variance ratio {ratio}");
+        let measured = a.peak_direction_deg.expect("a peak direction");
+        let diff = (measured - dir).rem_euclid(180.0);
+        let diff = diff.min(180.0 - diff);
+        assert!(
+            diff <= DIRECTION_TOL_DEG,
+            "wind {dir}°: energy direction {measured}° — the crests do not run across the wind"
+        );
+    }
+}

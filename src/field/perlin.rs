@@ -393,11 +393,8 @@ fn accumulate<const FIRST: bool>(v: &mut f32, x: f32) {
 // ---------------------------------------------------------------------------------------------
 // The grid: per-octave x tables shared by all rows, per-band caches of lattice-row gradients
 
-/// Average samples per cell from which a row is walked cell by cell (constant coefficients,
-/// vectorized inner loop) rather than sample by sample (coefficients gathered per sample).
-const MIN_RUN: usize = 6;
-
-/// Samples `start..end` of a row share the cell whose left column is `cols[left]`.
+/// Samples `start..end` of a row share the cell whose left column is `cols[left]` (see
+/// [`XTable`]).
 #[derive(Debug, Clone, Copy)]
 struct Run {
     start: usize,
@@ -407,17 +404,15 @@ struct Run {
 
 /// Where the samples of a row fall along x for one octave. Every row has the same x
 /// positions, so this is computed once per octave for the whole grid.
-///
-/// `cols` lists the lattice columns the row touches, as hash keys, such that the cell of a
-/// sample with left column `cols[l]` has its right column at `cols[l + 1]`.
 struct XTable {
+    /// The lattice columns the row touches, as hash keys ([`col_key`]): the cell of a run with
+    /// left column `cols[l]` has its right column at `cols[l + 1]`. Columns skipped between
+    /// samples (lattice finer than the grid) are not listed.
     cols: Vec<u64>,
     /// Per sample: the fraction `fx` given by [`split`] and `fade(fx)`.
     fx: Vec<f32>,
     sx: Vec<f32>,
-    /// Per sample: index in `cols` of the left column; empty when walking `runs`.
-    left: Vec<u32>,
-    /// Maximal runs of consecutive samples in one cell; empty when gathering via `left`.
+    /// Maximal runs of consecutive samples in one cell, in order, covering the row.
     runs: Vec<Run>,
 }
 
@@ -426,7 +421,6 @@ impl XTable {
         let mut cols = Vec::new();
         let mut fx = Vec::with_capacity(nx);
         let mut sx = Vec::with_capacity(nx);
-        let mut lefts = Vec::with_capacity(nx);
         let mut runs: Vec<Run> = Vec::new();
         let mut prev: Option<i64> = None;
         for i in 0..nx {
@@ -434,16 +428,15 @@ impl XTable {
             let (k, f) = split(i as f64 * dx * o.freq_x);
             fx.push(f);
             sx.push(fade(f));
-            match prev {
-                Some(p) if p == k => runs.last_mut().expect("a run is open").end = i + 1,
+            match (prev, runs.last_mut()) {
+                (Some(p), Some(r)) if p == k => r.end = i + 1,
                 _ => {
-                    let left = if prev.is_some_and(|p| p.wrapping_add(1) == k) {
-                        // The previous cell's right column is this cell's left column.
-                        cols.len() - 1
-                    } else {
+                    // When this cell follows the previous one, the previous cell's right
+                    // column is this cell's left column.
+                    if prev.is_none_or(|p| p.wrapping_add(1) != k) {
                         cols.push(col_key(k, o.wrap_x));
-                        cols.len() - 1
-                    };
+                    }
+                    let left = cols.len() - 1;
                     cols.push(col_key(k.wrapping_add(1), o.wrap_x));
                     runs.push(Run {
                         start: i,
@@ -452,23 +445,9 @@ impl XTable {
                     });
                 }
             }
-            lefts.push(runs.last().expect("a run is open").left);
             prev = Some(k);
         }
-        let mr: usize = std::env::var("MR").ok().and_then(|v| v.parse().ok()).unwrap_or(MIN_RUN);
-        let gather = runs.len() * mr > nx && cols.len() <= u32::MAX as usize;
-        let (left, runs) = if gather {
-            (lefts.into_iter().map(|l| l as u32).collect(), Vec::new())
-        } else {
-            (Vec::new(), runs)
-        };
-        Self {
-            cols,
-            fx,
-            sx,
-            left,
-            runs,
-        }
+        Self { cols, fx, sx, runs }
     }
 }
 
@@ -480,8 +459,9 @@ struct GradRow {
 }
 
 /// Per-band working storage of one octave: the gradients of the last two lattice rows used
-/// (consecutive output rows mostly share their lattice rows) and the row's column
-/// coefficients. Caching does not change any value: it only skips recomputing them.
+/// (consecutive output rows mostly share their lattice rows, so each lattice row is hashed
+/// about once per band instead of once per output row) and the current row's column
+/// coefficients. The cache only skips recomputation; it changes no value.
 struct OctaveScratch {
     rows: [GradRow; 2],
     coefs: Vec<[f32; 2]>,
@@ -500,8 +480,8 @@ impl OctaveScratch {
         }
     }
 
-    /// Index of the slot holding the gradients of row hash `h`, filling the slot other than
-    /// `keep` when absent.
+    /// Index of the slot holding the gradients of row hash `h` (the hash is a bijection of the
+    /// wrapped row index), filling the slot other than `keep` when absent.
     #[inline(always)]
     fn slot(&mut self, t: &XTable, h: u64, keep: Option<usize>) -> usize {
         if let Some(s) = self.rows.iter().position(|r| r.hash == Some(h)) {
@@ -516,7 +496,7 @@ impl OctaveScratch {
         s
     }
 
-    /// Fills `coefs` with `[A, B]` of every column of `t` for the row `row`.
+    /// Fills `coefs` with `[A, B]` ([`RowCtx::column`]) of every column of `t` for `row`.
     #[inline(always)]
     fn fill_coefs(&mut self, t: &XTable, row: &RowCtx) {
         let s0 = self.slot(t, row.hash0, None);
@@ -530,6 +510,11 @@ impl OctaveScratch {
 }
 
 /// Adds octave `o` to one output row at y = `y_m`.
+///
+/// The row is walked cell by cell: over a run the coefficients of the cell's two columns are
+/// constant, and `fx`, `fade(fx)` come from the table, so the inner loop has no conversion,
+/// no branch and no table look-up, and vectorizes. Small cells (a few samples each) cost one
+/// short run each; precomputed tables and coefficients keep that overhead small.
 #[inline(always)]
 fn add_octave_row<const FIRST: bool>(
     o: &Octave,
@@ -538,80 +523,22 @@ fn add_octave_row<const FIRST: bool>(
     y_m: f64,
     out: &mut [f32],
 ) {
-    let row = RowCtx::new(o, y_m);
-    s.fill_coefs(t, &row);
+    s.fill_coefs(t, &RowCtx::new(o, y_m));
     let coefs = &s.coefs;
     let amp = o.amp;
-    if t.runs.is_empty() {
-        // Small cells: gather the two columns' coefficients per sample.
-        for (((v, &l), &fx), &sx) in out.iter_mut().zip(&t.left).zip(&t.fx).zip(&t.sx) {
-            let l = l as usize;
-            let [a0, b0] = coefs[l];
-            let [a1, b1] = coefs[l + 1];
-            accumulate::<FIRST>(v, amp * combine_faded(&[a0, b0, a1, b1], fx, sx));
-        }
-    } else {
-        // Large cells: constant coefficients over each run.
-        for r in &t.runs {
-            let [a0, b0] = coefs[r.left];
-            let [a1, b1] = coefs[r.left + 1];
-            let c = [a0, b0, a1, b1];
-            let span = r.start..r.end;
-            for ((v, &fx), &sx) in out[span.clone()]
-                .iter_mut()
-                .zip(&t.fx[span.clone()])
-                .zip(&t.sx[span])
-            {
-                accumulate::<FIRST>(v, amp * combine_faded(&c, fx, sx));
-            }
+    for r in &t.runs {
+        let [a0, b0] = coefs[r.left];
+        let [a1, b1] = coefs[r.left + 1];
+        let c = [a0, b0, a1, b1];
+        let span = r.start..r.end;
+        for ((v, &fx), &sx) in out[span.clone()]
+            .iter_mut()
+            .zip(&t.fx[span.clone()])
+            .zip(&t.sx[span])
+        {
+            accumulate::<FIRST>(v, amp * combine_faded(&c, fx, sx));
         }
     }
-}
-
-/// Target number of samples per parallel band of rows.
-const BAND_SAMPLES: usize = 1 << 16;
-
-/// The fBm over the grid, normalized by the theoretical bound so every value lies in [-1, 1].
-///
-/// Sample `(i, j)` is the noise at `x = i·dx`, `y = j·dy` in meters (see [`crate::grid`]);
-/// `data[j * nx + i]`. Bands of rows are computed in parallel; every sample goes through the
-/// same operations as in [`perlin_at`], so the result does not depend on the number of
-/// threads. Panics on invalid parameters (see [`PerlinParams::validate`]).
-pub fn perlin_field(spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
-    check(spec, p);
-    if spec.is_empty() {
-        return Vec::new();
-    }
-    let octs = octaves(spec, p);
-    let dx = spec.dx_m();
-    let nx = spec.nx;
-    let tables: Vec<XTable> = octs.iter().map(|o| XTable::new(o, nx, dx)).collect();
-    let band_rows = (BAND_SAMPLES / nx).clamp(1, 64);
-    let mut out = vec![0.0f32; spec.len()];
-    let avx2 = has_avx2() && std::env::var("NOAVX").is_err();
-    out.par_chunks_mut(nx * band_rows)
-        .enumerate()
-        .for_each(|(b, band)| {
-            let y0 = b * band_rows;
-            #[cfg(target_arch = "x86_64")]
-            if avx2 {
-                // SAFETY: the CPU supports AVX2 (checked at run time).
-                unsafe { fill_band_avx2(spec, &octs, &tables, y0, band) };
-                return;
-            }
-            fill_band_portable(spec, &octs, &tables, y0, band);
-        });
-    out
-}
-
-#[cfg(target_arch = "x86_64")]
-fn has_avx2() -> bool {
-    std::arch::is_x86_feature_detected!("avx2")
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-fn has_avx2() -> bool {
-    false
 }
 
 /// Computes the rows of `band`, the first being row `y0` of the grid.
@@ -630,14 +557,94 @@ fn fill_band(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, ban
     }
 }
 
-fn fill_band_portable(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
+/// [`fill_band`] for any CPU.
+fn fill_band_portable(
+    spec: &GridSpec,
+    octs: &[Octave],
+    tables: &[XTable],
+    y0: usize,
+    band: &mut [f32],
+) {
+    fill_band(spec, octs, tables, y0, band)
+}
+
+/// [`fill_band`] compiled with AVX2 (wider vectors). Bit-identical to the portable build:
+/// the same Rust code, only IEEE add/sub/mul/min/max, and Rust never contracts a multiply
+/// and an add into an FMA (FMA is not enabled anyway).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn fill_band_avx2(
+    spec: &GridSpec,
+    octs: &[Octave],
+    tables: &[XTable],
+    y0: usize,
+    band: &mut [f32],
+) {
     fill_band(spec, octs, tables, y0, band)
 }
 
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn fill_band_avx2(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
-    fill_band(spec, octs, tables, y0, band)
+fn has_avx2() -> bool {
+    std::arch::is_x86_feature_detected!("avx2")
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn has_avx2() -> bool {
+    false
+}
+
+/// Dispatches to the AVX2 build of [`fill_band`] when `avx2` (the CPU supports it).
+#[inline(always)]
+fn fill_band_dispatch(
+    avx2: bool,
+    spec: &GridSpec,
+    octs: &[Octave],
+    tables: &[XTable],
+    y0: usize,
+    band: &mut [f32],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if avx2 {
+        // SAFETY: `avx2` is only true when the CPU supports AVX2 (see `has_avx2`).
+        unsafe { fill_band_avx2(spec, octs, tables, y0, band) };
+        return;
+    }
+    let _ = avx2;
+    fill_band_portable(spec, octs, tables, y0, band);
+}
+
+/// Target number of samples per parallel band of rows (rows of a band share gradient caches).
+const BAND_SAMPLES: usize = 1 << 16;
+
+/// The fBm over the grid, normalized by the theoretical bound so every value lies in [-1, 1].
+///
+/// Sample `(i, j)` is the noise at `x = i·dx`, `y = j·dy` in meters (see [`crate::grid`]);
+/// `data[j * nx + i]`. Bands of rows are computed in parallel; every sample goes through the
+/// same floating-point operations as in [`perlin_at`], so the result does not depend on the
+/// number of threads. Panics on invalid parameters (see [`PerlinParams::validate`]).
+pub fn perlin_field(spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
+    perlin_field_with(spec, p, has_avx2())
+}
+
+/// [`perlin_field`], with the AVX2 build only if `avx2` (and the CPU supports it).
+fn perlin_field_with(spec: &GridSpec, p: &PerlinParams, avx2: bool) -> Vec<f32> {
+    check(spec, p);
+    if spec.is_empty() {
+        return Vec::new();
+    }
+    let avx2 = avx2 && has_avx2();
+    let octs = octaves(spec, p);
+    let nx = spec.nx;
+    let tables: Vec<XTable> = octs
+        .iter()
+        .map(|o| XTable::new(o, nx, spec.dx_m()))
+        .collect();
+    let band_rows = (BAND_SAMPLES / nx).clamp(1, 64);
+    let mut out = vec![0.0f32; spec.len()];
+    out.par_chunks_mut(nx * band_rows)
+        .enumerate()
+        .for_each(|(b, band)| fill_band_dispatch(avx2, spec, &octs, &tables, b * band_rows, band));
+    out
 }
 
 /// The same value at one arbitrary point (x_m, y_m) in meters; agrees exactly with
@@ -827,6 +834,62 @@ mod tests {
                         "({i}, {j}): field {g} vs perlin_at {at} for {p:?}"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn field_agrees_with_point_evaluation_in_extreme_cases() {
+        for (spec, p) in [
+            // Lattice coordinates beyond 2^52 (integral f64) and far beyond i64.
+            (GridSpec::new(12, 5, 1e12, 1e12), params(3, 1e-6, false, 21)),
+            (GridSpec::new(9, 4, 1e30, 1e30), params(2, 1e-3, false, 22)),
+            // One cell across the extent: iy and iy + 1 wrap to the same lattice row.
+            (GridSpec::new(33, 17, 10.0, 10.0), params(2, 1e6, true, 23)),
+            // Cells wider than the row and several cells per sample in one grid.
+            (
+                GridSpec::new(5, 70, 2.0, 700.0),
+                params(12, 300.0, true, 24),
+            ),
+        ] {
+            let f = perlin_field(&spec, &p);
+            for j in 0..spec.ny {
+                for i in 0..spec.nx {
+                    let at = perlin_at(&spec, &p, spec.x_m(i), spec.y_m(j));
+                    let g = f[j * spec.nx + i];
+                    assert_eq!(
+                        g.to_bits(),
+                        at.to_bits(),
+                        "({i}, {j}): field {g} vs perlin_at {at} for {p:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn avx2_and_portable_builds_agree_bit_for_bit() {
+        for (spec, p) in [
+            (
+                GridSpec::new(1000, 70, 1000.0, 70.0),
+                params(6, 64.0, true, 31),
+            ),
+            (
+                GridSpec::new(301, 40, 1234.567, 89.0),
+                PerlinParams {
+                    lacunarity: 1.87,
+                    ..params(9, 77.7, false, 32)
+                },
+            ),
+            (
+                GridSpec::new(64, 64, 512.0, 512.0),
+                params(7, 40.0, true, 33),
+            ),
+        ] {
+            let portable = perlin_field_with(&spec, &p, false);
+            let fast = perlin_field_with(&spec, &p, true);
+            for (k, (a, b)) in portable.iter().zip(&fast).enumerate() {
+                assert_eq!(a.to_bits(), b.to_bits(), "index {k}: {a} vs {b} for {p:?}");
             }
         }
     }

@@ -66,13 +66,14 @@ pub(crate) fn check_frequency_spectrum(name: &str, s: &dyn FrequencySpectrum) {
 }
 
 /// Checks one spreading model at r = f/fp ∈ {0.3, 0.7, 1, 1.5, 3, 8}: ∫_{−π}^{π} D dθ = 1
-/// (composite 10-point Gauss–Legendre, 400 panels), D ≥ 0, D(θ) = D(−θ), finite.
+/// (composite 10-point Gauss–Legendre, 400 panels on each quarter turn, the one next to
+/// ±π with the substitution that smooths cos^{2s}(θ/2)), D ≥ 0, D(θ) = D(−θ), finite.
 pub(crate) fn check_spreading(name: &str, sp: Spreading, fp: f64, u10: f64) {
-    let rule = super::frequency::gauss_legendre(10);
     let pi = std::f64::consts::PI;
     for r in [0.3, 0.7, 1.0, 1.5, 3.0, 8.0] {
         let f = r * fp;
-        let total = super::frequency::integrate(|t| sp.density(f, fp, u10, t), -pi, pi, 400, &rule);
+        let even = |t: f64| 0.5 * (sp.density(f, fp, u10, t) + sp.density(f, fp, u10, -t));
+        let total = super::spreading::integrate_circle_even(even, 0.0, 400);
         assert!((total - 1.0).abs() <= NORM_REL, "{name} {sp:?} at f/fp {r}: ∫D dθ = {total}");
         for i in 0..=720 {
             let t = pi * i as f64 / 720.0;

@@ -1,0 +1,1038 @@
+//! `seasynth spectrum`: the model spectrum itself, as numbers or as plots.
+//!
+//! - `--freq F1,F2,… --json | --csv`: the one-sided frequency spectrum F(f) in m²/Hz of a
+//!   physical model (`pierson-moskowitz`, `jonswap`, `tma`) at the given frequencies (Hz),
+//!   with the model's Hs = 4·√m0, peak frequency and peak period.
+//! - `--plot FILE.png`: F(f) on log–log axes over [0.2 fp, 10 fp] (widened to take in
+//!   the `--freq` points), the peak marked (Mastin Fig. 4, Thon Fig. 2). 800×500 RGB.
+//! - `--plot2d FILE.png`: the directional wavenumber spectrum Ψ(kx, ky) (m⁴) on a
+//!   Cartesian grid centred on k = 0 over ±3 kp, log color scale, wind arrow (Mastin
+//!   Fig. 7). `phillips` and `fractal` have no F(f); for them the image shows the
+//!   discrete amplitude variance E|h̃0(k)|² (m²) the generator uses on the preset's grid.
+//!   600×600 RGB, +kx to the right and +ky **up** (mathematical orientation, unlike the
+//!   height-map images where +y points down).
+//!
+//! The model is built from the same parameters as `generate` (preset, `--set`, flags).
+//! Plot files are staged before any computation (an unwritable path fails at once) and
+//! written whole or not at all.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::colors::colormaps::ViridisRGB;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use serde::Serialize;
+
+use crate::config::validate::model_name;
+use crate::config::{Params, SpectrumModel};
+use crate::error::{Error, ParamError};
+use crate::export::Staged;
+use crate::field::{SeaModel, sea_model};
+use crate::spectrum::{DirectionalSpectrum, Fractal};
+
+/// Size of the `--plot` image, pixels.
+pub const PLOT_SIZE: (u32, u32) = (800, 500);
+/// Size of the `--plot2d` image, pixels.
+pub const PLOT2D_SIZE: (u32, u32) = (600, 600);
+/// Frequency range of `--plot`, in units of the peak frequency.
+pub const PLOT_RANGE_FP: (f64, f64) = (0.2, 10.0);
+/// Half-width of the `--plot2d` window, in units of the peak wavenumber.
+pub const PLOT2D_RANGE_KP: f64 = 3.0;
+/// Decades of the `--plot2d` color scale below the largest value.
+pub const PLOT2D_DECADES: f64 = 6.0;
+/// Decades of the `--plot` vertical axis below the peak.
+const PLOT_DECADES: f64 = 6.0;
+
+/// Command-line arguments of `seasynth spectrum`.
+#[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("format").args(["json", "csv"]).multiple(false)))]
+pub struct SpectrumArgs {
+    /// The field parameters, as for `generate` (boxed: keeps the `Command` enum small).
+    #[command(flatten)]
+    pub field: Box<crate::cli::FieldArgs>,
+    /// Frequencies in Hz where F(f) is printed, comma-separated (each > 0); with --json or --csv
+    #[arg(
+        long,
+        value_name = "F1,F2,…",
+        allow_hyphen_values = true,
+        requires = "format"
+    )]
+    pub freq: Option<String>,
+    /// Print one JSON object: {spectrum, points:[{f_hz, s_m2_per_hz}], hs_m, fp_hz, tp_s, m0_m2, params}
+    #[arg(long, requires = "freq")]
+    pub json: bool,
+    /// Print CSV: the header f_hz,s_m2_per_hz and one row per frequency
+    #[arg(long, requires = "freq")]
+    pub csv: bool,
+    /// Write F(f) on log–log axes, peak marked (800×500 PNG)
+    #[arg(long, value_name = "FILE.png")]
+    pub plot: Option<PathBuf>,
+    /// Write the directional wavenumber spectrum Ψ(kx, ky) over ±3 kp as a color map (600×600 PNG)
+    #[arg(long, value_name = "FILE.png")]
+    pub plot2d: Option<PathBuf>,
+}
+
+/// One point of the frequency spectrum.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Point {
+    pub f_hz: f64,
+    pub s_m2_per_hz: f64,
+}
+
+/// What `--json` prints.
+#[derive(Debug, Serialize)]
+pub struct Report<'a> {
+    /// The model name as in presets (`pierson-moskowitz`, `jonswap`, `tma`).
+    pub spectrum: String,
+    /// F(f) at the requested frequencies, in the order given.
+    pub points: Vec<Point>,
+    /// Significant wave height of the model, 4·√m0, m.
+    pub hs_m: f64,
+    /// Frequency where F is largest, Hz.
+    pub fp_hz: f64,
+    /// Peak period 1/fp, s.
+    pub tp_s: f64,
+    /// m0 = ∫F df = (hs_m/4)², m².
+    pub m0_m2: f64,
+    /// Wavenumber of the peak frequency through the dispersion relation, rad/m.
+    pub kp_rad_per_m: f64,
+    /// 2π/kp, m (compare `analyze --json`'s `peak_wavelength_m`).
+    pub peak_wavelength_m: f64,
+    /// The fully resolved parameters.
+    pub params: &'a Params,
+}
+
+/// Parses `--freq`: comma-separated frequencies in Hz, each finite and > 0.
+pub fn parse_freqs(text: &str) -> Result<Vec<f64>, ParamError> {
+    let mut good = Vec::new();
+    let mut bad = Vec::new();
+    for item in text.split(',') {
+        let item = item.trim();
+        match item.parse::<f64>() {
+            Ok(f) if f.is_finite() && f > 0.0 => good.push(f),
+            _ => bad.push(if item.is_empty() {
+                "(empty)".to_string()
+            } else {
+                item.to_string()
+            }),
+        }
+    }
+    if bad.is_empty() {
+        Ok(good)
+    } else {
+        Err(ParamError {
+            name: "--freq".into(),
+            allowed:
+                "comma-separated frequencies in Hz, each a finite number > 0 (e.g. 0.05,0.1,0.2)"
+                    .into(),
+            got: bad.join(", "),
+        })
+    }
+}
+
+/// Why a model has no frequency spectrum in m²/Hz, for `--freq` and `--plot`.
+fn no_frequency_spectrum(model: SpectrumModel) -> String {
+    let what = match model {
+        SpectrumModel::Phillips => {
+            "phillips is a discrete wavenumber spectrum (Tessendorf's convention: A multiplies the \
+             discrete Fourier amplitudes)"
+        }
+        _ => "fractal is a wavenumber power law for terrain, without dispersion",
+    };
+    format!(
+        "{what}, so it has no frequency spectrum in m²/Hz; use a physical model \
+         (--spectrum pierson-moskowitz, jonswap or tma)"
+    )
+}
+
+/// A number as JSON writes it (shortest text that reads back to the same f64).
+pub fn number_text(v: f64) -> String {
+    serde_json::to_string(&v).unwrap_or_else(|_| v.to_string())
+}
+
+/// The CSV text: header `f_hz,s_m2_per_hz`, then one row per point.
+pub fn csv_text(points: &[Point]) -> String {
+    let mut s = String::from("f_hz,s_m2_per_hz\n");
+    for p in points {
+        s.push_str(&number_text(p.f_hz));
+        s.push(',');
+        s.push_str(&number_text(p.s_m2_per_hz));
+        s.push('\n');
+    }
+    s
+}
+
+/// Checks a plot path (a `.png` file in a writable folder) and stages it.
+fn stage_plot(path: &Path) -> Result<Staged, Error> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref() != Some("png") {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "plots are PNG images: the file name must end in .png".into(),
+        });
+    }
+    Staged::create(path)
+}
+
+/// Runs `seasynth spectrum`.
+pub fn run(args: SpectrumArgs) -> Result<()> {
+    // Through `Error`, so a bad value exits with code 2.
+    let freqs = args
+        .freq
+        .as_deref()
+        .map(parse_freqs)
+        .transpose()
+        .map_err(Error::from)?;
+    if freqs.is_none() && args.plot.is_none() && args.plot2d.is_none() {
+        return Err(Error::Set {
+            origin: "spectrum".into(),
+            message: "nothing to do: give --freq F1,F2,… with --json or --csv, --plot FILE.png \
+                      or --plot2d FILE.png"
+                .into(),
+        }
+        .into());
+    }
+    let params = crate::app::resolve_params(&args.field)?;
+    let sea = sea_model(&params)?;
+    if sea.is_none() {
+        for (given, flag) in [(freqs.is_some(), "--freq"), (args.plot.is_some(), "--plot")] {
+            if given {
+                return Err(Error::Set {
+                    origin: flag.into(),
+                    message: no_frequency_spectrum(params.spectrum.model),
+                }
+                .into());
+            }
+        }
+    }
+    if let (Some(a), Some(b)) = (&args.plot, &args.plot2d) {
+        if a == b {
+            return Err(Error::Output {
+                path: a.clone(),
+                message: "given to both --plot and --plot2d".into(),
+            }
+            .into());
+        }
+    }
+    // Stage the plot files before any work: a bad path fails now.
+    let plot = args.plot.as_deref().map(stage_plot).transpose()?;
+    let plot2d = args.plot2d.as_deref().map(stage_plot).transpose()?;
+
+    // The numbers first (the directional spectrum of --plot2d takes the model over).
+    let text = match (&freqs, &sea) {
+        (Some(freqs), Some(sea)) => Some(points_text(&params, sea, freqs, args.csv)?),
+        _ => None,
+    };
+    if let Some(staged) = plot {
+        let sea = sea.as_ref().expect("checked above");
+        let image = render_plot(&params, sea, freqs.as_deref().unwrap_or(&[]))
+            .map_err(|e| Error::io(&staged.path, e))?;
+        write_png(staged, &image, PLOT_SIZE)?;
+    }
+    if let Some(staged) = plot2d {
+        let map = wavenumber_map(&params, sea)?;
+        let image = render_plot2d(&map).map_err(|e| Error::io(&staged.path, e))?;
+        write_png(staged, &image, PLOT2D_SIZE)?;
+    }
+    if let Some(text) = text {
+        print!("{text}");
+    }
+    Ok(())
+}
+
+/// The `--json` (or with `csv`, the `--csv`) text of F(f) at `freqs`.
+pub fn points_text(
+    params: &Params,
+    sea: &SeaModel,
+    freqs: &[f64],
+    csv: bool,
+) -> Result<String, serde_json::Error> {
+    let points: Vec<Point> = freqs
+        .iter()
+        .map(|&f| Point {
+            f_hz: f,
+            s_m2_per_hz: sea.freq.density(f),
+        })
+        .collect();
+    if csv {
+        return Ok(csv_text(&points));
+    }
+    let hs = sea.freq.hs_m();
+    let fp = sea.freq.peak_hz();
+    let kp = sea.dispersion.wavenumber(std::f64::consts::TAU * fp);
+    let report = Report {
+        spectrum: model_name(params.spectrum.model),
+        points,
+        hs_m: hs,
+        fp_hz: fp,
+        tp_s: 1.0 / fp,
+        m0_m2: (hs / 4.0) * (hs / 4.0),
+        kp_rad_per_m: kp,
+        peak_wavelength_m: std::f64::consts::TAU / kp,
+        params,
+    };
+    Ok(serde_json::to_string_pretty(&report)? + "\n")
+}
+
+/// Encodes an RGB buffer as an 8-bit PNG into the staged file.
+fn write_png(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
+    staged.write_with(|out| {
+        let mut enc = png::Encoder::new(out, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+        writer
+            .write_image_data(rgb)
+            .map_err(std::io::Error::other)?;
+        writer.finish().map_err(std::io::Error::other)
+    })
+}
+
+/// A drawing error as an I/O error (a failure while working: exit code 1).
+fn draw_err<E: std::fmt::Display>(e: E) -> std::io::Error {
+    std::io::Error::other(format!("cannot draw the plot: {e}"))
+}
+
+/// A tick value with up to 3 significant digits and no trailing zeros.
+fn tick_text(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor();
+    if !(-4.0..5.0).contains(&mag) {
+        return format!("{v:.0e}");
+    }
+    let decimals = (2.0 - mag).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Ticks of a log axis over [lo, hi]: labelled ones (1, 2, 3, 5 × 10ⁿ, fewer over many
+/// decades) or the light grid (1 … 9 × 10ⁿ).
+fn log_ticks(lo: f64, hi: f64, labelled: bool) -> Vec<f64> {
+    let decades = (hi / lo).log10();
+    let mantissas: &[f64] = match (labelled, decades) {
+        (false, _) => &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+        (true, d) if d <= 2.5 => &[1.0, 2.0, 3.0, 5.0],
+        (true, d) if d <= 5.0 => &[1.0, 2.0, 5.0],
+        _ => &[1.0],
+    };
+    let mut out = Vec::new();
+    let mut e = lo.log10().floor() as i32;
+    while 10f64.powi(e) <= hi {
+        for m in mantissas {
+            // Formatted and parsed back so 3 × 10⁻² is 0.03, not 0.030000000000000002.
+            let v: f64 = format!("{m}e{e}").parse().expect("a number");
+            if v >= lo && v <= hi {
+                out.push(v);
+            }
+        }
+        e += 1;
+    }
+    out
+}
+
+/// A power of ten as a tick label: `1e-3`, `1`, `10`, `1e4`.
+fn decade_text(v: f64) -> String {
+    let e = v.log10().round() as i32;
+    match e {
+        0 => "1".into(),
+        1 => "10".into(),
+        _ => format!("1e{e}"),
+    }
+}
+
+/// The parameters a model is made from, for titles: wind, fetch or Hs/Tp, γ, depth.
+fn parameter_text(params: &Params) -> String {
+    let s = &params.spectrum;
+    let mut parts = Vec::new();
+    match (s.hs_m, s.tp_s) {
+        (Some(hs), Some(tp)) => {
+            parts.push(format!("Hs {} m, Tp {} s", tick_text(hs), tick_text(tp)))
+        }
+        _ => {
+            parts.push(format!("U10 {} m/s", tick_text(params.wind.speed_mps)));
+            if matches!(s.model, SpectrumModel::Jonswap | SpectrumModel::Tma) {
+                parts.push(format!("fetch {} km", tick_text(s.fetch_km)));
+            }
+        }
+    }
+    if matches!(s.model, SpectrumModel::Jonswap | SpectrumModel::Tma) {
+        parts.push(format!("γ {}", tick_text(s.gamma)));
+    }
+    parts.push(match s.depth_m {
+        Some(d) => format!("depth {} m", tick_text(d)),
+        None => "deep water".into(),
+    });
+    parts.join(", ")
+}
+
+fn spreading_name(params: &Params) -> String {
+    serde_json::to_value(params.spectrum.spreading)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
+/// Font of every text in the plots.
+const FONT: &str = "sans-serif";
+
+/// Draws F(f) on log–log axes into an RGB buffer of [`PLOT_SIZE`].
+pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::Result<Vec<u8>> {
+    let (w, h) = PLOT_SIZE;
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    let fp = sea.freq.peak_hz();
+    let hs = sea.freq.hs_m();
+    let mut f_lo = PLOT_RANGE_FP.0 * fp;
+    let mut f_hi = PLOT_RANGE_FP.1 * fp;
+    for &f in marks {
+        f_lo = f_lo.min(f / 1.25);
+        f_hi = f_hi.max(f * 1.25);
+    }
+    const N: usize = 1200;
+    let curve: Vec<(f64, f64)> = (0..=N)
+        .map(|i| {
+            let f = f_lo * (f_hi / f_lo).powf(i as f64 / N as f64);
+            (f, sea.freq.density(f))
+        })
+        .collect();
+    let peak = sea
+        .freq
+        .density(fp)
+        .max(curve.iter().map(|p| p.1).fold(0.0, f64::max));
+    let y_hi = 10f64.powf((peak * 3.0).log10().ceil());
+    let y_lo = 10f64.powf((peak * 10f64.powf(-PLOT_DECADES)).log10().floor());
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let (head, body) = root.split_vertically(62);
+        let name = model_name(params.spectrum.model);
+        head.draw(&Text::new(
+            format!("{name}: frequency spectrum F(f)"),
+            (12, 8),
+            (FONT, 22).into_font().style(FontStyle::Bold),
+        ))
+        .map_err(draw_err)?;
+        head.draw(&Text::new(
+            format!(
+                "{}  →  Hs {} m, fp {} Hz (Tp {} s)",
+                parameter_text(params),
+                tick_text(hs),
+                tick_text(fp),
+                tick_text(1.0 / fp)
+            ),
+            (12, 36),
+            (FONT, 16),
+        ))
+        .map_err(draw_err)?;
+        let mut chart = ChartBuilder::on(&body)
+            .margin_left(10)
+            .margin_right(25)
+            .margin_top(8)
+            .margin_bottom(8)
+            .x_label_area_size(45)
+            .y_label_area_size(75)
+            .build_cartesian_2d(
+                (f_lo..f_hi)
+                    .log_scale()
+                    .with_key_points(log_ticks(f_lo, f_hi, true))
+                    .with_light_points(log_ticks(f_lo, f_hi, false)),
+                (y_lo..y_hi).log_scale(),
+            )
+            .map_err(draw_err)?;
+        chart
+            .configure_mesh()
+            .x_desc("frequency f (Hz)")
+            .y_desc("F(f) (m²/Hz)")
+            .x_label_formatter(&|v| tick_text(*v))
+            .y_label_formatter(&|v| decade_text(*v))
+            .axis_desc_style((FONT, 17))
+            .label_style((FONT, 14))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(205, 205, 205))
+            .draw()
+            .map_err(draw_err)?;
+        // The curve, without the part below the axis (F underflows to 0 far below fp).
+        let visible = curve.iter().copied().filter(|p| p.1 >= y_lo);
+        chart
+            .draw_series(LineSeries::new(visible, BLUE.stroke_width(2)))
+            .map_err(draw_err)?
+            .label("F(f)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        let red = RGBColor(200, 30, 30);
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(fp, y_lo), (fp, y_hi)],
+                6,
+                4,
+                red.stroke_width(2),
+            ))
+            .map_err(draw_err)?;
+        let label = format!("fp = {} Hz", tick_text(fp));
+        // Below the curve's right flank, which stays high for decades beyond fp.
+        let bottom = chart.backend_coord(&(fp, y_lo));
+        root.draw(&Text::new(
+            label,
+            (bottom.0 + 7, bottom.1 - 26),
+            (FONT, 16).into_font().color(&red),
+        ))
+        .map_err(draw_err)?;
+        if !marks.is_empty() {
+            chart
+                .draw_series(
+                    marks
+                        .iter()
+                        .map(|&f| (f, sea.freq.density(f)))
+                        .filter(|p| p.1 >= y_lo && p.1 <= y_hi)
+                        .map(|p| Circle::new(p, 5, BLACK.stroke_width(2))),
+                )
+                .map_err(draw_err)?
+                .label("--freq points")
+                .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FONT, 15))
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()
+            .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(buf)
+}
+
+/// What `--plot2d` shows: a square window of wavevectors and a function over it.
+pub struct WavenumberMap {
+    /// The window is [−half, half]² rad/m.
+    pub half_rad_per_m: f64,
+    /// The peak wavenumber the window is scaled by (a circle is drawn there), rad/m.
+    pub kp_rad_per_m: Option<f64>,
+    /// Wind direction (toward), radians from +x.
+    pub wind_dir_rad: f64,
+    /// Title lines.
+    pub title: String,
+    pub subtitle: String,
+    /// Quantity and unit for the color bar.
+    pub quantity: String,
+    /// Draw the wind arrow (not for the isotropic fractal spectrum).
+    pub show_wind: bool,
+    /// The function of (kx, ky) shown.
+    value: Box<dyn Fn(f64, f64) -> f64 + Send + Sync>,
+}
+
+impl WavenumberMap {
+    pub fn value(&self, kx: f64, ky: f64) -> f64 {
+        (self.value)(kx, ky)
+    }
+}
+
+/// The wavenumber map of `params`: Ψ(kx, ky) for a physical sea, the discrete amplitude
+/// variance on the preset's grid for `phillips` and `fractal`.
+pub fn wavenumber_map(params: &Params, sea: Option<SeaModel>) -> Result<WavenumberMap, Error> {
+    let name = model_name(params.spectrum.model);
+    let wind_dir_rad = params.wind.direction_deg.to_radians();
+    let wind = format!(
+        "wind {} m/s toward {}°",
+        tick_text(params.wind.speed_mps),
+        tick_text(params.wind.direction_deg)
+    );
+    let [nx, ny] = params.grid.size.0;
+    let [lx, ly] = params.grid.extent_m.0;
+    let tau = std::f64::consts::TAU;
+    let (dkx, dky) = (tau / lx, tau / ly);
+    let grid_text = format!(
+        "on the {nx}×{ny} grid over {} × {} m",
+        tick_text(lx),
+        tick_text(ly)
+    );
+    if let Some(sea) = sea {
+        let spectrum = DirectionalSpectrum::new(
+            sea.freq,
+            sea.spreading,
+            sea.wind_dir_rad,
+            sea.u10_mps,
+            sea.dispersion,
+        )?;
+        let kp = spectrum.peak_wavenumber();
+        return Ok(WavenumberMap {
+            half_rad_per_m: PLOT2D_RANGE_KP * kp,
+            kp_rad_per_m: Some(kp),
+            wind_dir_rad,
+            title: format!("{name} + {}: Ψ(kx, ky)", spreading_name(params)),
+            subtitle: format!(
+                "{}, toward {}°; kp {} rad/m",
+                parameter_text(params),
+                tick_text(params.wind.direction_deg),
+                tick_text(kp)
+            ),
+            quantity: "Ψ (m⁴)".into(),
+            value: Box::new(move |kx, ky| spectrum.psi(kx, ky)),
+            show_wind: true,
+        });
+    }
+    match params.spectrum.model {
+        SpectrumModel::Phillips => {
+            // The generator's own model.
+            let (p, _) = crate::field::spectrum_model(params)?;
+            // Along the wind P ∝ exp(−1/(kL)²)/k⁴ peaks at k = 1/(√2 L).
+            let big_l = crate::field::phillips(params).largest_wave_m();
+            let kp = 1.0 / (std::f64::consts::SQRT_2 * big_l);
+            Ok(WavenumberMap {
+                half_rad_per_m: PLOT2D_RANGE_KP * kp,
+                kp_rad_per_m: Some(kp),
+                wind_dir_rad,
+                title: "phillips: P(k) = E|h0(k)|², discrete convention".into(),
+                subtitle: format!(
+                    "A {:e}, {wind}; kp = 1/(√2 L) = {} rad/m",
+                    params.spectrum.phillips_a,
+                    tick_text(kp)
+                ),
+                quantity: "P (m²)".into(),
+                value: Box::new(move |kx, ky| p.amplitude_variance(kx, ky, dkx, dky)),
+                show_wind: true,
+            })
+        }
+        _ => {
+            let f = &params.fractal;
+            let beta = Fractal::new(f.dimension, f.relief_m, f.rolloff_m)?.beta();
+            // The generator's own model, scaled to the grid.
+            let (on_grid, _) = crate::field::spectrum_model(params)?;
+            let kp = f.rolloff_m.map(|r| tau / r);
+            let dk_min = dkx.min(dky);
+            // Without a roll-off the power law has no scale: show the grid's band.
+            let nyquist =
+                (std::f64::consts::PI * nx as f64 / lx).min(std::f64::consts::PI * ny as f64 / ly);
+            let half = match kp {
+                Some(k) => PLOT2D_RANGE_KP * k,
+                None => nyquist.min(32.0 * dkx.max(dky)),
+            };
+            Ok(WavenumberMap {
+                half_rad_per_m: half,
+                kp_rad_per_m: kp,
+                wind_dir_rad,
+                title: "fractal: E|h0(k)|², isotropic power law".into(),
+                subtitle: format!(
+                    "D {}, β {}, relief {} m{}, {grid_text}",
+                    tick_text(f.dimension),
+                    tick_text(beta),
+                    tick_text(f.relief_m),
+                    f.rolloff_m
+                        .map(|r| format!(", roll-off {} m", tick_text(r)))
+                        .unwrap_or_default()
+                ),
+                quantity: "E|h0|² (m²)".into(),
+                // The grid has no wavevector shorter than its spacing but k = 0 (left out).
+                value: Box::new(move |kx, ky| {
+                    if kx * kx + ky * ky < dk_min * dk_min {
+                        0.0
+                    } else {
+                        on_grid.amplitude_variance(kx, ky, dkx, dky)
+                    }
+                }),
+                show_wind: false,
+            })
+        }
+    }
+}
+
+/// Samples `map` at the centres of an n×n pixel grid, row 0 at the top (+ky largest).
+pub fn sample_map(map: &WavenumberMap, n: usize) -> Vec<f64> {
+    use rayon::prelude::*;
+    let half = map.half_rad_per_m;
+    let step = 2.0 * half / n as f64;
+    let rows: Vec<Vec<f64>> = (0..n)
+        .into_par_iter()
+        .map(|row| {
+            let ky = half - (row as f64 + 0.5) * step;
+            (0..n)
+                .map(|col| map.value(-half + (col as f64 + 0.5) * step, ky))
+                .collect()
+        })
+        .collect();
+    rows.concat()
+}
+
+/// Draws the wavenumber map into an RGB buffer of [`PLOT2D_SIZE`].
+pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
+    let (w, h) = PLOT2D_SIZE;
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    // Layout: title 60 px, a square plot of SIDE px with axes left and below, the color
+    // bar on the right.
+    const SIDE: i32 = 450;
+    const LEFT: i32 = 80;
+    const TOP: i32 = 70;
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        root.draw(&Text::new(
+            map.title.clone(),
+            (12, 8),
+            (FONT, 20).into_font().style(FontStyle::Bold),
+        ))
+        .map_err(draw_err)?;
+        root.draw(&Text::new(map.subtitle.clone(), (12, 36), (FONT, 14)))
+            .map_err(draw_err)?;
+        let half = map.half_rad_per_m;
+        // Ticks at 0 come out as ±1e-17 from the evenly spaced key points.
+        let snap = |v: f64| if v.abs() < 1e-9 * half { 0.0 } else { v };
+        let area = root.clone().shrink(
+            (LEFT - 70, TOP - 10),
+            ((SIDE + 70 + 10) as u32, (SIDE + 10 + 50) as u32),
+        );
+        let mut chart = ChartBuilder::on(&area)
+            .margin_top(10)
+            .margin_right(10)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d(-half..half, -half..half)
+            .map_err(draw_err)?;
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let (pw, ph) = ((xr.end - xr.start) as usize, (yr.end - yr.start) as usize);
+        let n = pw.min(ph);
+        let values = sample_map(map, n);
+        let vmax = values.iter().copied().fold(0.0, f64::max);
+        let lmax = if vmax > 0.0 { vmax.log10().ceil() } else { 0.0 };
+        let lmin = lmax - PLOT2D_DECADES;
+        let color = |v: f64| -> RGBColor {
+            let l = if v > 0.0 { v.log10() } else { lmin };
+            ViridisRGB.get_color_normalized(l.clamp(lmin, lmax), lmin, lmax)
+        };
+        for row in 0..n {
+            for col in 0..n {
+                let c = color(values[row * n + col]);
+                root.draw_pixel((xr.start + col as i32, yr.start + row as i32), &c)
+                    .map_err(draw_err)?;
+            }
+        }
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("kx (rad/m)")
+            .y_desc("ky (rad/m)")
+            .x_label_formatter(&|v| tick_text(snap(*v)))
+            .y_label_formatter(&|v| tick_text(snap(*v)))
+            .axis_desc_style((FONT, 16))
+            .label_style((FONT, 13))
+            .x_labels(7)
+            .y_labels(7)
+            .draw()
+            .map_err(draw_err)?;
+        let white = WHITE.mix(0.9);
+        if let Some(kp) = map.kp_rad_per_m {
+            let ring: Vec<(f64, f64)> = (0..=180)
+                .map(|i| {
+                    let a = i as f64 * std::f64::consts::TAU / 180.0;
+                    (kp * a.cos(), kp * a.sin())
+                })
+                .collect();
+            chart
+                .draw_series(DashedLineSeries::new(ring, 5, 5, white.stroke_width(1)))
+                .map_err(draw_err)?;
+            // Away from the wind arrow.
+            let a = map.wind_dir_rad + 2.4;
+            let at = chart.backend_coord(&(kp * a.cos(), kp * a.sin()));
+            root.draw(&Text::new(
+                "kp",
+                (at.0 + 4, at.1 - 18),
+                (FONT, 15).into_font().color(&WHITE),
+            ))
+            .map_err(draw_err)?;
+        }
+        if map.show_wind {
+            // From the origin toward the wind direction, 0.8 of the way to the edge.
+            let (s, c) = map.wind_dir_rad.sin_cos();
+            let len = 0.8 * half;
+            let from = chart.backend_coord(&(0.0, 0.0));
+            let to = chart.backend_coord(&(len * c, len * s));
+            draw_wind_arrow(&root, from, to, map.wind_dir_rad)?;
+        }
+        // The color bar.
+        let bx = xr.end + 14;
+        let (by0, by1) = (yr.start, yr.start + n as i32);
+        for y in by0..by1 {
+            let l = lmax - (y - by0) as f64 / (by1 - by0) as f64 * (lmax - lmin);
+            let c = ViridisRGB.get_color_normalized(l, lmin, lmax);
+            root.draw(&Rectangle::new([(bx, y), (bx + 18, y + 1)], c.filled()))
+                .map_err(draw_err)?;
+        }
+        root.draw(&Rectangle::new(
+            [(bx, by0), (bx + 18, by1)],
+            BLACK.stroke_width(1),
+        ))
+        .map_err(draw_err)?;
+        for d in 0..=(PLOT2D_DECADES as i32) {
+            let y = by0 + ((by1 - by0) as f64 * d as f64 / PLOT2D_DECADES).round() as i32;
+            root.draw(&PathElement::new(
+                vec![(bx + 18, y), (bx + 22, y)],
+                BLACK.stroke_width(1),
+            ))
+            .map_err(draw_err)?;
+            root.draw(&Text::new(
+                decade_text(10f64.powf(lmax - d as f64)),
+                (bx + 24, y - 7),
+                (FONT, 13),
+            ))
+            .map_err(draw_err)?;
+        }
+        root.draw(&Text::new(
+            map.quantity.clone(),
+            (bx - 6, by0 - 22),
+            (FONT, 14),
+        ))
+        .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    Ok(buf)
+}
+
+/// The wind arrow from pixel `a` to pixel `b` (direction `dir_rad` from +kx, +ky up),
+/// with its label beyond the head.
+fn draw_wind_arrow(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    a: (i32, i32),
+    b: (i32, i32),
+    dir_rad: f64,
+) -> std::io::Result<()> {
+    let arrow = RGBColor(255, 80, 60);
+    root.draw(&PathElement::new(vec![a, b], arrow.stroke_width(3)))
+        .map_err(draw_err)?;
+    // Pixel directions: +ky is up on the screen.
+    let (s, c) = dir_rad.sin_cos();
+    let (ux, uy) = (c, -s);
+    let head = |along: f64, across: f64| -> (i32, i32) {
+        (
+            (b.0 as f64 - along * ux - across * uy).round() as i32,
+            (b.1 as f64 - along * uy + across * ux).round() as i32,
+        )
+    };
+    root.draw(&Polygon::new(
+        vec![b, head(16.0, 7.0), head(16.0, -7.0)],
+        arrow.filled(),
+    ))
+    .map_err(draw_err)?;
+    // The label beside the shaft at 60 % of its length, on the upper side.
+    let (mut nx, mut ny) = (-uy, ux);
+    if ny > 0.0 || (ny == 0.0 && nx < 0.0) {
+        (nx, ny) = (-nx, -ny);
+    }
+    let at = (
+        (a.0 as f64 + 0.6 * (b.0 - a.0) as f64 + 28.0 * nx).round() as i32,
+        (a.1 as f64 + 0.6 * (b.1 - a.1) as f64 + 28.0 * ny).round() as i32,
+    );
+    let style = (FONT, 15)
+        .into_font()
+        .color(&arrow)
+        .pos(Pos::new(HPos::Center, VPos::Center));
+    root.draw(&Rectangle::new(
+        [(at.0 - 22, at.1 - 10), (at.0 + 22, at.1 + 10)],
+        BLACK.mix(0.55).filled(),
+    ))
+    .map_err(draw_err)?;
+    root.draw(&Text::new("wind", at, style)).map_err(draw_err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::FrequencySpectrum;
+
+    fn params(model: SpectrumModel) -> Params {
+        let mut p = Params::default();
+        p.spectrum.model = model;
+        p
+    }
+
+    #[test]
+    fn frequencies_parse_and_bad_ones_are_named() {
+        assert_eq!(parse_freqs("0.05, 0.1,2e-1").unwrap(), vec![0.05, 0.1, 0.2]);
+        let e = parse_freqs("0,-1").unwrap_err().to_string();
+        assert!(e.starts_with("--freq must be"), "{e}");
+        assert!(e.contains("(got 0, -1)"), "{e}");
+        let e = parse_freqs("0.1,abc,,inf,NaN").unwrap_err().to_string();
+        assert!(e.contains("(got abc, (empty), inf, NaN)"), "{e}");
+    }
+
+    #[test]
+    fn csv_numbers_read_back_exactly() {
+        let pts = [
+            Point {
+                f_hz: 0.05,
+                s_m2_per_hz: 1.234_567_890_123_456_7e-20,
+            },
+            Point {
+                f_hz: 0.1,
+                s_m2_per_hz: 12.5,
+            },
+        ];
+        let text = csv_text(&pts);
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("f_hz,s_m2_per_hz"));
+        for (line, p) in lines.zip(&pts) {
+            let (f, s) = line.split_once(',').unwrap();
+            assert_eq!(f.parse::<f64>().unwrap(), p.f_hz);
+            assert_eq!(s.parse::<f64>().unwrap(), p.s_m2_per_hz);
+        }
+        assert_eq!(text.lines().count(), 3);
+    }
+
+    #[test]
+    fn log_ticks_cover_the_range() {
+        assert_eq!(
+            log_ticks(0.017, 0.85, true),
+            vec![0.02, 0.03, 0.05, 0.1, 0.2, 0.3, 0.5]
+        );
+        assert_eq!(
+            log_ticks(1e-3, 2e3, true),
+            vec![1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3]
+        );
+        assert_eq!(log_ticks(0.15, 0.45, false), vec![0.2, 0.3, 0.4]);
+    }
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_text(0.085), "0.085");
+        assert_eq!(tick_text(0.1), "0.1");
+        assert_eq!(tick_text(15.0), "15");
+        assert_eq!(tick_text(0.0294118), "0.0294");
+        assert_eq!(tick_text(123.4), "123");
+        assert_eq!(decade_text(1e-3), "1e-3");
+        assert_eq!(decade_text(1.0), "1");
+        assert_eq!(decade_text(1e4), "1e4");
+    }
+
+    /// ∫F df by Simpson's rule in ln f over [fp/20, 1000 fp] plus the f⁻⁵ tail.
+    fn m0_by_quadrature(f: &dyn FrequencySpectrum) -> f64 {
+        let fp = f.peak_hz();
+        let (a, b) = ((fp / 20.0).ln(), (1000.0 * fp).ln());
+        let n = 20_000;
+        let h = (b - a) / n as f64;
+        let g = |u: f64| {
+            let x = u.exp();
+            f.density(x) * x
+        };
+        let mut s = g(a) + g(b);
+        for i in 1..n {
+            s += g(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        let fmax = b.exp();
+        s * h / 3.0 + f.density(fmax) * fmax / 4.0
+    }
+
+    #[test]
+    fn the_reported_m0_is_the_integral_of_the_printed_density() {
+        let mut p = params(SpectrumModel::PiersonMoskowitz);
+        p.wind.speed_mps = 15.0;
+        let mut cases = vec![p.clone()];
+        p.spectrum.model = SpectrumModel::Jonswap;
+        cases.push(p.clone());
+        p.spectrum.model = SpectrumModel::Tma;
+        p.spectrum.depth_m = Some(20.0);
+        cases.push(p.clone());
+        for p in cases {
+            p.validate().unwrap();
+            let sea = sea_model(&p).unwrap().unwrap();
+            let hs = sea.freq.hs_m();
+            let m0 = m0_by_quadrature(sea.freq.as_ref());
+            let rel = (4.0 * m0.sqrt() - hs).abs() / hs;
+            assert!(
+                rel < 1e-7,
+                "{:?}: Hs {hs} vs 4√m0 {}",
+                p.spectrum.model,
+                4.0 * m0.sqrt()
+            );
+        }
+    }
+
+    #[test]
+    fn phillips_and_fractal_have_no_sea_model_and_say_why() {
+        assert!(
+            sea_model(&params(SpectrumModel::Phillips))
+                .unwrap()
+                .is_none()
+        );
+        assert!(
+            sea_model(&params(SpectrumModel::Fractal))
+                .unwrap()
+                .is_none()
+        );
+        let m = no_frequency_spectrum(SpectrumModel::Phillips);
+        assert!(m.contains("phillips is a discrete wavenumber spectrum (Tessendorf's convention"));
+        assert!(m.contains("use a physical model"));
+        assert!(no_frequency_spectrum(SpectrumModel::Fractal).starts_with("fractal"));
+    }
+
+    /// (row, col) of the largest sample.
+    fn argmax(v: &[f64], n: usize) -> (usize, usize) {
+        let i = v
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(b.1))
+            .unwrap()
+            .0;
+        (i / n, i % n)
+    }
+
+    #[test]
+    fn the_map_peaks_at_kp_in_the_wind_direction_with_ky_up() {
+        let mut p = params(SpectrumModel::PiersonMoskowitz);
+        p.wind.speed_mps = 15.0;
+        p.wind.direction_deg = 90.0;
+        let sea = sea_model(&p).unwrap().unwrap();
+        let fp = sea.freq.peak_hz();
+        let map = wavenumber_map(&p, Some(sea)).unwrap();
+        let kp = map.kp_rad_per_m.unwrap();
+        let want = (std::f64::consts::TAU * fp).powi(2) / crate::spectrum::G;
+        assert!((kp - want).abs() < 1e-9 * want, "kp {kp} vs {want}");
+        let n = 121;
+        let v = sample_map(&map, n);
+        let (row, col) = argmax(&v, n);
+        let step = 2.0 * map.half_rad_per_m / n as f64;
+        let kx = -map.half_rad_per_m + (col as f64 + 0.5) * step;
+        let ky = map.half_rad_per_m - (row as f64 + 0.5) * step;
+        assert!(kx.abs() <= step, "peak at kx {kx}");
+        // Ψ (per unit kx·ky) peaks a little below kp: the Jacobian 1/k·df/dk grows to k → 0.
+        assert!(ky > 0.5 * kp && ky < 1.2 * kp, "peak at ky {ky}, kp {kp}");
+        // Upwind there is (almost) nothing with Hasselmann spreading.
+        assert!(v[(n - 1 - row) * n + col] < 1e-3 * v[row * n + col]);
+    }
+
+    fn colors(buf: &[u8]) -> usize {
+        let mut set: Vec<[u8; 3]> = buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        set.sort_unstable();
+        set.dedup();
+        set.len()
+    }
+
+    #[test]
+    fn plots_render_for_every_model() {
+        let mut p = params(SpectrumModel::Jonswap);
+        p.spectrum.hs_m = Some(3.0);
+        p.spectrum.tp_s = Some(10.0);
+        p.validate().unwrap();
+        let sea = sea_model(&p).unwrap().unwrap();
+        let buf = render_plot(&p, &sea, &[0.05, 0.1, 0.3]).unwrap();
+        assert_eq!(buf.len(), (PLOT_SIZE.0 * PLOT_SIZE.1 * 3) as usize);
+        assert!(colors(&buf) > 10);
+        let map = wavenumber_map(&p, Some(sea)).unwrap();
+        let buf = render_plot2d(&map).unwrap();
+        assert!(colors(&buf) > 50);
+        for model in [SpectrumModel::Phillips, SpectrumModel::Fractal] {
+            let p = params(model);
+            let map = wavenumber_map(&p, None).unwrap();
+            assert!(map.value(0.3 * map.half_rad_per_m, 0.1 * map.half_rad_per_m) > 0.0);
+            let buf = render_plot2d(&map).unwrap();
+            assert!(colors(&buf) > 50, "{model:?}");
+        }
+    }
+}
