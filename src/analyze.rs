@@ -111,7 +111,7 @@ impl Target {
                              so the whole field has no target spectrum"
                     .to_string(),
                 m => format!(
-                    "method {m} does not follow a spectrum model (targets exist for {})",
+                    "method {m} does not follow a spectrum model; targets exist for {}",
                     COMPARABLE_METHODS.join(", ")
                 ),
             });

@@ -3,7 +3,7 @@
 //! Parseval, the FFT method against its target spectrum, and bad input (exit code 2, one
 //! line naming the file).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use assert_cmd::Command;
 use seasynth::export::tiff32;
