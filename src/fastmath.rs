@@ -121,9 +121,22 @@ const EXP_TABLE: [u64; 1 << EXP_TABLE_BITS] = [
 /// `exp(+inf) = +inf`, `exp(−inf) = 0`. Relative error ≈ 1 ulp for normal results.
 #[inline]
 pub fn exp(x: f64) -> f64 {
-    if x.abs() >= EXP_FAST_LIMIT || x.is_nan() {
+    if exp_is_special(x) {
         return exp_special(x);
     }
+    exp_fast(x)
+}
+
+/// True where [`exp`] leaves the branch-free path (|x| ≥ the fast limit, or NaN).
+#[inline(always)]
+pub(crate) fn exp_is_special(x: f64) -> bool {
+    x.abs() >= EXP_FAST_LIMIT || x.is_nan()
+}
+
+/// [`exp`] without the special-value branch: equal to it where `!exp_is_special(x)`,
+/// meaningless elsewhere (but free of undefined behaviour), so it vectorizes.
+#[inline(always)]
+pub(crate) fn exp_fast(x: f64) -> f64 {
     let (k, table_bits, lo, p) = exp_reduce(x);
     // 2^(k/32) = 2^(j/32)·2^(k >> 5), normal here: add to the exponent field.
     let scale = f64::from_bits(table_bits.wrapping_add(((k >> EXP_TABLE_BITS) as u64) << 52));
@@ -233,6 +246,14 @@ pub fn ln(x: f64) -> f64 {
     ln_normal(ix, 0)
 }
 
+/// [`ln`] of a positive, normal, finite `x`, without the range check: straight-line code
+/// (one table lookup) for loops that the compiler vectorizes. Bit-identical to [`ln`]
+/// for such `x`; for other `x` the result is meaningless (but computing it is harmless).
+#[inline(always)]
+pub(crate) fn ln_positive_normal(x: f64) -> f64 {
+    ln_normal(x.to_bits(), 0)
+}
+
 /// ln for zeros, negatives, subnormals, infinities and NaNs.
 #[cold]
 #[inline(never)]
@@ -290,7 +311,7 @@ const PIO2_3: f64 = f64::from_bits(0x3C5A_6263_3145_C06E); // 5.721188726109832e
 const PIO2_HI: f64 = f64::from_bits(0x3FF9_21FB_5444_2D18);
 const PIO2_LO: f64 = f64::from_bits(0x3C91_A626_3314_5C07);
 /// Cody–Waite reduction is used below this (|k| ≤ 6.4e7 < 2^26); Payne–Hanek above.
-const SIN_COS_CW_LIMIT: f64 = 1.0e8;
+pub(crate) const SIN_COS_CW_LIMIT: f64 = 1.0e8;
 /// fdlibm `__kernel_sin` `S1..S6`: sin r ≈ r + r³·(S1 + r²·S2 + … + r¹⁰·S6) on |r| ≤ π/4.
 const SIN_S: [f64; 6] = [
     f64::from_bits(0xBFC5_5555_5555_5549), // -1.66666666666666324348e-01
@@ -342,9 +363,25 @@ const TWO_OVER_PI_BITS: [u64; 19] = [
 /// `sin_cos(−x)` is exactly `(−sin x, cos x)`.
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    if x.abs() >= SIN_COS_CW_LIMIT || x.is_nan() {
+    if sin_cos_is_large(x) {
         return sin_cos_large(x);
     }
+    sin_cos_cody_waite(x)
+}
+
+/// True for the `x` that [`sin_cos`] hands to its cold path: `|x| ≥ SIN_COS_CW_LIMIT`,
+/// infinities and NaNs.
+#[inline(always)]
+pub(crate) fn sin_cos_is_large(x: f64) -> bool {
+    x.abs() >= SIN_COS_CW_LIMIT || x.is_nan()
+}
+
+/// [`sin_cos`] for `|x| < SIN_COS_CW_LIMIT`, without the range check: straight-line,
+/// branch-free code for loops that the compiler vectorizes. Bit-identical to [`sin_cos`]
+/// for such `x`; for other `x` ([`sin_cos_is_large`]) the result is meaningless (but
+/// computing it is harmless), and callers must use [`sin_cos`] instead.
+#[inline(always)]
+pub(crate) fn sin_cos_cody_waite(x: f64) -> (f64, f64) {
     let t = x * FRAC_2_PI + ROUND_MAGIC;
     let kf = t - ROUND_MAGIC;
     // The low bits of t hold k in two's complement; only k mod 4 matters.

@@ -27,6 +27,7 @@ use rustfft::num_complex::{Complex, Complex32};
 use rustfft::{Fft, FftPlanner};
 
 use crate::fastmath;
+use crate::field::lines::{polar_line, sin_cos_line};
 use crate::grid::{Grid, GridSpec};
 use crate::rng::gaussian_polar;
 use crate::spectrum::{Dispersion, Spectrum};
@@ -84,7 +85,7 @@ impl SpectrumSetup<'_> {
             return (0.0, 0.0);
         }
         let (r, phi) = gaussian_polar(self.seed, n, m);
-        ((p * 0.5).sqrt() * r, phi)
+        scale_draw(p, r, phi)
     }
 
     fn h0_polar(&self, n: i64, m: i64) -> (f64, f64) {
@@ -167,9 +168,18 @@ pub(crate) struct LineBuffers {
     /// E|h̃0(k)|² and E|h̃0(−k)|² of the line (kernels may reuse them).
     pub pa: Vec<f64>,
     pub pb: Vec<f64>,
-    /// Scratch for kernels.
+    /// Scratch for kernels: Rayleigh factors, phases, arguments, sines and cosines of
+    /// the k (a) and −k (b) terms.
+    pub ra: Vec<f64>,
+    pub rb: Vec<f64>,
     pub pha: Vec<f64>,
     pub phb: Vec<f64>,
+    pub xa: Vec<f64>,
+    pub xb: Vec<f64>,
+    pub sa: Vec<f64>,
+    pub ca: Vec<f64>,
+    pub sb: Vec<f64>,
+    pub cb: Vec<f64>,
 }
 
 /// Builds the half spectrum line by line in parallel: for each kx line n, the spectrum
@@ -196,8 +206,16 @@ where
                 neg_ky: ky.iter().map(|v| -v).collect(),
                 pa: vec![0.0; ny],
                 pb: vec![0.0; ny],
+                ra: vec![0.0; ny],
+                rb: vec![0.0; ny],
                 pha: vec![0.0; ny],
                 phb: vec![0.0; ny],
+                xa: vec![0.0; ny],
+                xb: vec![0.0; ny],
+                sa: vec![0.0; ny],
+                ca: vec![0.0; ny],
+                sb: vec![0.0; ny],
+                cb: vec![0.0; ny],
             },
             |buf, (n, line)| {
                 let n = n as i64;
@@ -225,28 +243,42 @@ where
 pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     build_lines(setup, |n, kx, buf, line| {
-        // Short loops of independent iterations, which the processor overlaps.
+        // Whole-line passes that vectorize (see `field::lines`); the values are those of
+        // `polar_from` and `combine`, bit for bit.
+        polar_line(setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
+        polar_line(setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
         for idx in 0..ny {
-            let m = signed_index(idx, ny);
-            (buf.pa[idx], buf.pha[idx]) = setup.polar_from(buf.pa[idx], n, m);
+            let wt = setup.omega_t(kx, buf.ky[idx]);
+            (buf.ra[idx], buf.pha[idx]) = scale_draw(buf.pa[idx], buf.ra[idx], buf.pha[idx]);
+            (buf.rb[idx], buf.phb[idx]) = scale_draw(buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+            buf.xa[idx] = buf.pha[idx] - wt;
+            buf.xb[idx] = buf.phb[idx] - wt;
         }
-        for idx in 0..ny {
-            let m = signed_index(idx, ny);
-            (buf.pb[idx], buf.phb[idx]) = setup.polar_from(buf.pb[idx], -n, -m);
-        }
+        sin_cos_line(&buf.xa, &mut buf.sa, &mut buf.ca);
+        sin_cos_line(&buf.xb, &mut buf.sb, &mut buf.cb);
         let mut peak = 0.0f64;
         for (idx, out) in line.iter_mut().enumerate() {
             let m = signed_index(idx, ny);
             if !is_resolved(n, m, nx, ny) {
                 continue;
             }
-            let wt = setup.omega_t(kx, buf.ky[idx]);
-            let (h, p) = combine(buf.pa[idx], buf.pha[idx], buf.pb[idx], buf.phb[idx], wt);
-            peak = peak.max(p);
+            let (ra, rb) = (buf.ra[idx], buf.rb[idx]);
+            let h = Complex::new(
+                ra * buf.ca[idx] + rb * buf.cb[idx],
+                ra * buf.sa[idx] - rb * buf.sb[idx],
+            );
+            peak = peak.max((ra * ra).max(rb * rb));
             *out = Complex32::new(h.re as f32, h.im as f32);
         }
         peak
     })
+}
+
+/// ρ = √(p/2)·r and φ of a draw (r, φ) for E|h̃0|² = p; (0, 0) where p ≤ 0, as
+/// [`SpectrumSetup::polar_from`].
+#[inline(always)]
+fn scale_draw(p: f64, r: f64, phi: f64) -> (f64, f64) {
+    if p <= 0.0 { (0.0, 0.0) } else { ((p * 0.5).sqrt() * r, phi) }
 }
 
 /// A planned 2D inverse transform from a [`HalfSpectrum`] to a real N×M field.
@@ -415,6 +447,32 @@ mod tests {
                     a.re,
                     b
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn the_line_kernels_give_the_reference_amplitudes_bit_for_bit() {
+        let ph = Phillips::new(2e-4, 11.0, 2.2, 0.3);
+        for (nx, ny, t) in [(32, 24, 0.0), (33, 17, 12.5), (8, 64, 1e3)] {
+            let spec = GridSpec::new(nx, ny, 70.0, 50.0);
+            let setup = phillips_setup(spec, &ph, 21, t);
+            let half = synthesize_spectrum(&setup);
+            for n in 0..=(nx / 2) {
+                for idx in 0..ny {
+                    let m = signed_index(idx, ny);
+                    let got = half.data[n * ny + idx];
+                    let want = if is_resolved(n as i64, m, nx, ny) {
+                        let (h, _) = setup.amplitude(n as i64, m);
+                        Complex32::new(h.re as f32, h.im as f32)
+                    } else {
+                        Complex32::new(0.0, 0.0)
+                    };
+                    assert!(
+                        got.re.to_bits() == want.re.to_bits() && got.im.to_bits() == want.im.to_bits(),
+                        "{nx}x{ny} t={t}: (n, m) = ({n}, {m}): {got} vs {want}"
+                    );
+                }
             }
         }
     }

@@ -8,6 +8,7 @@
 
 use super::{G, Spectrum};
 use crate::fastmath;
+use crate::field::lines::exp_line;
 
 /// A validated Phillips spectrum.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,8 +61,29 @@ impl Spectrum for Phillips {
     }
 
     fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
-        for (o, &y) in out.iter_mut().zip(ky) {
-            *o = self.value(kx, y);
+        // The same operations as `value`, in passes that vectorize: the exponents, the
+        // exponentials, then the products in `value`'s order.
+        let n = ky.len();
+        let mut arg = vec![0.0; n];
+        let mut e1 = vec![0.0; n];
+        for (a, &y) in arg.iter_mut().zip(ky) {
+            let k2 = kx * kx + y * y;
+            *a = -1.0 / (k2 * self.big_l_m * self.big_l_m);
+        }
+        exp_line(&arg, &mut e1);
+        let mut e2 = vec![1.0; n];
+        if self.small_l_m > 0.0 {
+            for (a, &y) in arg.iter_mut().zip(ky) {
+                let k2 = kx * kx + y * y;
+                *a = -k2 * self.small_l_m * self.small_l_m;
+            }
+            exp_line(&arg, &mut e2);
+        }
+        for (i, (o, &y)) in out.iter_mut().zip(ky).enumerate() {
+            let k2 = kx * kx + y * y;
+            let cos = (kx * self.wind_dir.0 + y * self.wind_dir.1) / k2.sqrt();
+            let v = self.a * e1[i] / (k2 * k2) * (cos * cos) * e2[i];
+            *o = if k2 == 0.0 { 0.0 } else { v };
         }
     }
 }
@@ -86,6 +108,22 @@ mod tests {
         // Across the wind there is no energy, and none at k = 0.
         assert!(p.value(0.0, k).abs() < 1e-30);
         assert_eq!(p.value(0.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn the_line_evaluation_equals_the_single_values_bit_for_bit() {
+        for l in [0.0, 0.7] {
+            let p = Phillips::new(3e-7, 13.0, 0.9, l);
+            let ky: Vec<f64> = (-40..40).map(|m| m as f64 * 0.0123).collect();
+            for kx in [0.0, 0.0123, -0.5, 3.0] {
+                let mut out = vec![0.0; ky.len()];
+                p.amplitude_variance_line(kx, &ky, 0.0, 0.0, &mut out);
+                for (i, (&o, &y)) in out.iter().zip(&ky).enumerate() {
+                    let want = p.value(kx, y);
+                    assert!(o.to_bits() == want.to_bits(), "l={l} kx={kx} ky[{i}]={y}: {o} vs {want}");
+                }
+            }
+        }
     }
 
     #[test]
