@@ -66,7 +66,7 @@ mod tests {
         let half = filtered_spectrum(&setup);
         for idx in 1..24 {
             let m = signed_index(idx, 24);
-            let mirror = ((24 - idx) % 24) as usize;
+            let mirror = (24 - idx) % 24;
             let (a, b) = (half.data[idx], half.data[mirror]);
             if is_resolved(0, m, 32, 24) {
                 assert_eq!(a, b.conj(), "h̃(0, {m}) must be conj h̃(0, {})", -m);
