@@ -30,7 +30,7 @@ use crate::config::{Params, SpectrumModel};
 use crate::error::{Error, ParamError};
 use crate::export::Staged;
 use crate::field::{SeaModel, sea_model};
-use crate::spectrum::{DirectionalSpectrum, Fractal};
+use crate::spectrum::Fractal;
 
 /// Size of the `--plot` image, pixels.
 pub const PLOT_SIZE: (u32, u32) = (800, 500);
@@ -557,13 +557,7 @@ pub fn wavenumber_map(params: &Params, sea: Option<SeaModel>) -> Result<Wavenumb
         tick_text(ly)
     );
     if let Some(sea) = sea {
-        let spectrum = DirectionalSpectrum::new(
-            sea.freq,
-            sea.spreading,
-            sea.wind_dir_rad,
-            sea.u10_mps,
-            sea.dispersion,
-        )?;
+        let spectrum = sea.into_directional()?;
         let kp = spectrum.peak_wavenumber();
         return Ok(WavenumberMap {
             half_rad_per_m: PLOT2D_RANGE_KP * kp,

@@ -14,8 +14,8 @@ use crate::error::Result;
 use crate::grid::Grid;
 use crate::rng::{Stream, sub_seed};
 use crate::spectrum::{
-    DirectionalSpectrum, Dispersion, Fractal, FrequencySpectrum, Jonswap, Phillips, PiersonMoskowitz, Spectrum,
-    Spreading, SpreadingModel, Tma,
+    DirectionalSpectrum, Dispersion, Fractal, FrequencySpectrum, Jonswap, Phillips,
+    PiersonMoskowitz, Spectrum, Spreading, SpreadingModel, Tma,
 };
 
 /// What a synthesis found out along the way, recorded in the sidecar.
@@ -79,6 +79,19 @@ pub struct SeaModel {
     pub dispersion: Dispersion,
 }
 
+impl SeaModel {
+    /// The sea as a wavenumber spectrum.
+    pub fn into_directional(self) -> Result<DirectionalSpectrum> {
+        Ok(DirectionalSpectrum::new(
+            self.freq,
+            self.spreading,
+            self.wind_dir_rad,
+            self.u10_mps,
+            self.dispersion,
+        )?)
+    }
+}
+
 /// The physical sea of validated `params` (`None` for `phillips` and `fractal`):
 /// from `--hs/--tp` when given, else from the wind (and fetch for JONSWAP and TMA).
 pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
@@ -88,7 +101,9 @@ pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
     let hs_tp = s.hs_m.zip(s.tp_s);
     let freq: Box<dyn FrequencySpectrum> = match (s.model, hs_tp) {
         (SpectrumModel::PiersonMoskowitz, None) => Box::new(PiersonMoskowitz::from_wind(u)?),
-        (SpectrumModel::PiersonMoskowitz, Some((h, t))) => Box::new(PiersonMoskowitz::from_hs_tp(h, t)?),
+        (SpectrumModel::PiersonMoskowitz, Some((h, t))) => {
+            Box::new(PiersonMoskowitz::from_hs_tp(h, t)?)
+        }
         (SpectrumModel::Jonswap, None) => Box::new(Jonswap::from_wind_fetch(u, fetch_m, s.gamma)?),
         (SpectrumModel::Jonswap, Some((h, t))) => Box::new(Jonswap::from_hs_tp(h, t, s.gamma)?),
         (SpectrumModel::Tma, hs_tp) => {
@@ -130,8 +145,8 @@ pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)
         }
         _ => {
             let sea = sea_model(params)?.expect("a physical sea model");
-            let d = DirectionalSpectrum::new(sea.freq, sea.spreading, sea.wind_dir_rad, sea.u10_mps, sea.dispersion)?;
-            (Box::new(d), sea.dispersion)
+            let dispersion = sea.dispersion;
+            (Box::new(sea.into_directional()?), dispersion)
         }
     })
 }
