@@ -104,6 +104,27 @@ pub fn run(args: BenchArgs) -> Result<()> {
             "spectrum h̃(k,t), t ≠ 0",
             time(repeats, || fft::synthesize_spectrum(&timed_setup)),
         ));
+        let sea_params = Params {
+            spectrum: crate::config::SpectrumParams {
+                model: crate::config::SpectrumModel::PiersonMoskowitz,
+                ..params.spectrum.clone()
+            },
+            wind: crate::config::WindParams {
+                speed_mps: 15.0,
+                direction_deg: 30.0,
+            },
+            ..params.clone()
+        };
+        let (sea, sea_dispersion) = field::spectrum_model(&sea_params)?;
+        let sea_setup = fft::SpectrumSetup {
+            spectrum: sea.as_ref(),
+            dispersion: sea_dispersion,
+            ..setup
+        };
+        rows.push((
+            "spectrum PM×Hasselmann, 15 m/s",
+            time(repeats, || fft::synthesize_spectrum(&sea_setup)),
+        ));
         let plan = fft::InverseFft2::new(n, n);
         let template = fft::synthesize_spectrum(&setup);
         let fft_time = median(
