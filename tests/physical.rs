@@ -6,7 +6,10 @@ use seasynth::field::fft::{SpectrumSetup, is_resolved, signed_index};
 use seasynth::field::{sea_model, spectrum_model, synthesize};
 
 fn params(sets: &[&str]) -> Params {
-    let a: Vec<Assignment> = sets.iter().map(|s| Assignment::parse_set(s).unwrap()).collect();
+    let a: Vec<Assignment> = sets
+        .iter()
+        .map(|s| Assignment::parse_set(s).unwrap())
+        .collect();
     apply(Params::default(), &a).unwrap()
 }
 
@@ -28,7 +31,8 @@ fn expected_variance(p: &Params) -> f64 {
             let (n, m) = (signed_index(i, spec.nx), signed_index(j, spec.ny));
             if is_resolved(n, m, spec.nx, spec.ny) {
                 let (kx, ky) = setup.wavevector(n, m);
-                sum += model.amplitude_variance(kx, ky, dkx, dky) + model.amplitude_variance(-kx, -ky, dkx, dky);
+                sum += model.amplitude_variance(kx, ky, dkx, dky)
+                    + model.amplitude_variance(-kx, -ky, dkx, dky);
             }
         }
     }
@@ -39,7 +43,10 @@ fn expected_variance(p: &Params) -> f64 {
 fn mean_variance(p: &Params, seeds: u64) -> f64 {
     (0..seeds)
         .map(|s| {
-            let q = Params { seed: 1000 + s, ..p.clone() };
+            let q = Params {
+                seed: 1000 + s,
+                ..p.clone()
+            };
             synthesize(&q).unwrap().grid.stats().std_m.powi(2)
         })
         .sum::<f64>()
@@ -94,7 +101,10 @@ fn pierson_moskowitz_at_15_mps_has_the_model_significant_wave_height() {
 #[test]
 fn jonswap_and_tma_have_the_model_significant_wave_height() {
     // 15 m/s over 100 km: fp ≈ 0.14 Hz (≈ 80 m waves); a 2 m grid resolves ≈ 0.62 Hz.
-    for (name, extra) in [("JONSWAP", vec![]), ("TMA 20 m", vec!["spectrum=tma", "depth=20"])] {
+    for (name, extra) in [
+        ("JONSWAP", vec![]),
+        ("TMA 20 m", vec!["spectrum=tma", "depth=20"]),
+    ] {
         let mut sets = vec![
             "method=fft",
             "spectrum=jonswap",
@@ -127,7 +137,13 @@ fn sea_states_given_by_hs_and_tp_have_that_hs() {
 fn shallow_water_slows_the_waves_and_the_field_follows_finite_depth_dispersion() {
     // The same sea at t = 0 and t = 5 s: in 5 m of water the waves move slower than in
     // deep water, so the field changes less between the two times at the long waves.
-    let base = ["method=fft", "spectrum=jonswap", "wind-speed=10", "size=128", "extent=512"];
+    let base = [
+        "method=fft",
+        "spectrum=jonswap",
+        "wind-speed=10",
+        "size=128",
+        "extent=512",
+    ];
     let change = |extra: &[&str]| {
         let mut s0: Vec<&str> = base.to_vec();
         s0.extend(extra);
@@ -137,18 +153,32 @@ fn shallow_water_slows_the_waves_and_the_field_follows_finite_depth_dispersion()
         let p1 = params(&s1);
         let a = synthesize(&p0).unwrap().grid;
         let b = synthesize(&p1).unwrap().grid;
-        let d: f64 = a.data.iter().zip(&b.data).map(|(x, y)| ((x - y) as f64).powi(2)).sum();
+        let d: f64 = a
+            .data
+            .iter()
+            .zip(&b.data)
+            .map(|(x, y)| ((x - y) as f64).powi(2))
+            .sum();
         let v: f64 = a.data.iter().map(|x| (*x as f64).powi(2)).sum();
         d / v
     };
     let deep = change(&[]);
     let shallow = change(&["depth=5"]);
-    assert!(shallow < deep, "relative change in 5 s: shallow {shallow} should be below deep {deep}");
+    assert!(
+        shallow < deep,
+        "relative change in 5 s: shallow {shallow} should be below deep {deep}"
+    );
 }
 
 #[test]
 fn the_sidecar_records_the_model_hs_and_peak_period() {
-    let p = params(&["method=fft", "spectrum=pierson-moskowitz", "wind-speed=15", "size=64", "extent=1024"]);
+    let p = params(&[
+        "method=fft",
+        "spectrum=pierson-moskowitz",
+        "wind-speed=15",
+        "size=64",
+        "extent=1024",
+    ]);
     let s = synthesize(&p).unwrap();
     let hs = s.info.model_hs_m.expect("model Hs recorded");
     let tp = s.info.model_tp_s.expect("model Tp recorded");
@@ -197,10 +227,20 @@ fn filtered_noise_has_the_target_spectrum_and_crests_across_the_wind() {
             a.peak_wavelength_m,
             t.target_peak_wavelength_m
         );
-        assert!(t.bins_compared >= 10, "too few bins compared: {}", t.bins_compared);
-        assert!(rms <= LOG10_RMS_TOL, "wind {dir}°: spectrum shape off by {rms} in log10 RMS");
+        assert!(
+            t.bins_compared >= 10,
+            "too few bins compared: {}",
+            t.bins_compared
+        );
+        assert!(
+            rms <= LOG10_RMS_TOL,
+            "wind {dir}°: spectrum shape off by {rms} in log10 RMS"
+        );
         let ratio = t.variance_ratio.unwrap();
-        assert!((ratio - 1.0).abs() <= VARIANCE_TOL, "wind {dir}°: variance ratio {ratio}");
+        assert!(
+            (ratio - 1.0).abs() <= VARIANCE_TOL,
+            "wind {dir}°: variance ratio {ratio}"
+        );
         let measured = a.peak_direction_deg.expect("a peak direction");
         let diff = (measured - dir).rem_euclid(180.0);
         let diff = diff.min(180.0 - diff);

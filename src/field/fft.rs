@@ -278,7 +278,11 @@ pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
 /// [`SpectrumSetup::polar_from`].
 #[inline(always)]
 fn scale_draw(p: f64, r: f64, phi: f64) -> (f64, f64) {
-    if p <= 0.0 { (0.0, 0.0) } else { ((p * 0.5).sqrt() * r, phi) }
+    if p <= 0.0 {
+        (0.0, 0.0)
+    } else {
+        ((p * 0.5).sqrt() * r, phi)
+    }
 }
 
 /// A planned 2D inverse transform from a [`HalfSpectrum`] to a real N×M field.
@@ -469,7 +473,8 @@ mod tests {
                         Complex32::new(0.0, 0.0)
                     };
                     assert!(
-                        got.re.to_bits() == want.re.to_bits() && got.im.to_bits() == want.im.to_bits(),
+                        got.re.to_bits() == want.re.to_bits()
+                            && got.im.to_bits() == want.im.to_bits(),
                         "{nx}x{ny} t={t}: (n, m) = ({n}, {m}): {got} vs {want}"
                     );
                 }

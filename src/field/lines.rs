@@ -720,7 +720,17 @@ mod exp_line_tests {
     #[test]
     fn exp_line_equals_the_scalar_exp_bit_for_bit() {
         let mut x: Vec<f64> = (0..5000).map(|i| -800.0 + i as f64 * 0.3317).collect();
-        x.extend([0.0, -0.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 709.0, -745.0, -1e300, 1e-300]);
+        x.extend([
+            0.0,
+            -0.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            709.0,
+            -745.0,
+            -1e300,
+            1e-300,
+        ]);
         let mut e = vec![0.0; x.len()];
         exp_line(&x, &mut e);
         for (i, (&x, &e)) in x.iter().zip(&e).enumerate() {

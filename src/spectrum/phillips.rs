@@ -120,7 +120,10 @@ mod tests {
                 p.amplitude_variance_line(kx, &ky, 0.0, 0.0, &mut out);
                 for (i, (&o, &y)) in out.iter().zip(&ky).enumerate() {
                     let want = p.value(kx, y);
-                    assert!(o.to_bits() == want.to_bits(), "l={l} kx={kx} ky[{i}]={y}: {o} vs {want}");
+                    assert!(
+                        o.to_bits() == want.to_bits(),
+                        "l={l} kx={kx} ky[{i}]={y}: {o} vs {want}"
+                    );
                 }
             }
         }
