@@ -85,7 +85,7 @@ impl Fractal {
     #[inline]
     pub fn psi_unnormalized(&self, kx: f64, ky: f64) -> f64 {
         let k2 = kx * kx + ky * ky;
-        if !(k2 > 0.0) {
+        if k2.is_nan() || k2 <= 0.0 {
             return 0.0;
         }
         exp(-self.half_beta * (ln(k2) + self.kr2 / k2))
@@ -94,8 +94,17 @@ impl Fractal {
     /// The spectrum scaled for an `nx` × `ny` grid over `extent_x_m` × `extent_y_m`:
     /// Σ over the resolved wavevectors (k ≠ 0, no Nyquist row or column, as
     /// [`crate::field::fft::is_resolved`]) of P(k) + P(−k) equals relief_m².
-    pub fn normalized_for(&self, nx: usize, ny: usize, extent_x_m: f64, extent_y_m: f64) -> FractalOnGrid {
-        assert!(nx >= 1 && ny >= 1 && extent_x_m > 0.0 && extent_y_m > 0.0, "grid {nx}×{ny} over {extent_x_m}×{extent_y_m}");
+    pub fn normalized_for(
+        &self,
+        nx: usize,
+        ny: usize,
+        extent_x_m: f64,
+        extent_y_m: f64,
+    ) -> FractalOnGrid {
+        assert!(
+            nx >= 1 && ny >= 1 && extent_x_m > 0.0 && extent_y_m > 0.0,
+            "grid {nx}×{ny} over {extent_x_m}×{extent_y_m}"
+        );
         let tau = 2.0 * std::f64::consts::PI;
         let (dkx, dky) = (tau / extent_x_m, tau / extent_y_m);
         // The resolved set is |n| ≤ (nx−1)/2, |m| ≤ (ny−1)/2 without (0, 0), symmetric in
@@ -191,7 +200,10 @@ mod tests {
                     let p1 = f.psi_unnormalized(k1 * c, k1 * s);
                     let p2 = f.psi_unnormalized(k2 * c, k2 * s);
                     let slope = (p2.ln() - p1.ln()) / (k2 / k1).ln();
-                    assert!((slope - want).abs() <= REL_TOL * want.abs(), "D {d}: slope {slope} vs {want} over [{k1}, {k2}]");
+                    assert!(
+                        (slope - want).abs() <= REL_TOL * want.abs(),
+                        "D {d}: slope {slope} vs {want} over [{k1}, {k2}]"
+                    );
                 }
             }
         }
@@ -204,8 +216,14 @@ mod tests {
             let kr = 2.0 * std::f64::consts::PI / r;
             let peak = f.psi_unnormalized(kr, 0.0);
             for e in [1e-3, 1e-2, 0.1, 0.5] {
-                assert!(f.psi_unnormalized(kr * (1.0 + e), 0.0) < peak, "D {d}: above the peak by {e}");
-                assert!(f.psi_unnormalized(kr * (1.0 - e), 0.0) < peak, "D {d}: below the peak by {e}");
+                assert!(
+                    f.psi_unnormalized(kr * (1.0 + e), 0.0) < peak,
+                    "D {d}: above the peak by {e}"
+                );
+                assert!(
+                    f.psi_unnormalized(kr * (1.0 - e), 0.0) < peak,
+                    "D {d}: below the peak by {e}"
+                );
             }
             // Far above the peak the power law returns.
             let k = 1000.0 * kr;
@@ -234,22 +252,40 @@ mod tests {
                     let (n, m) = (signed_index(i, nx), signed_index(j, ny));
                     if is_resolved(n, m, nx, ny) {
                         let (kx, ky) = (n as f64 * dkx, m as f64 * dky);
-                        var += g.amplitude_variance(kx, ky, dkx, dky) + g.amplitude_variance(-kx, -ky, dkx, dky);
+                        var += g.amplitude_variance(kx, ky, dkx, dky)
+                            + g.amplitude_variance(-kx, -ky, dkx, dky);
                     }
                 }
             }
-            assert!((var - 144.0).abs() <= REL_TOL * 144.0, "{nx}×{ny}: variance {var} vs 144");
+            assert!(
+                (var - 144.0).abs() <= REL_TOL * 144.0,
+                "{nx}×{ny}: variance {var} vs 144"
+            );
         }
         // Nothing resolved: a zero spectrum, not NaN.
-        let g = Fractal::new(2.3, 1.0, None).unwrap().normalized_for(2, 2, 1.0, 1.0);
+        let g = Fractal::new(2.3, 1.0, None)
+            .unwrap()
+            .normalized_for(2, 2, 1.0, 1.0);
         assert_eq!(g.scale(), 0.0);
     }
 
     #[test]
     fn invalid_parameters_name_the_parameter() {
-        assert_eq!(Fractal::new(3.0, 1.0, None).unwrap_err().name, "fractal.dimension");
-        assert_eq!(Fractal::new(2.0, 1.0, None).unwrap_err().allowed, "> 2 and < 3");
-        assert_eq!(Fractal::new(2.5, 0.0, None).unwrap_err().name, "fractal.relief_m");
-        assert_eq!(Fractal::new(2.5, 1.0, Some(-4.0)).unwrap_err().name, "fractal.rolloff_m");
+        assert_eq!(
+            Fractal::new(3.0, 1.0, None).unwrap_err().name,
+            "fractal.dimension"
+        );
+        assert_eq!(
+            Fractal::new(2.0, 1.0, None).unwrap_err().allowed,
+            "> 2 and < 3"
+        );
+        assert_eq!(
+            Fractal::new(2.5, 0.0, None).unwrap_err().name,
+            "fractal.relief_m"
+        );
+        assert_eq!(
+            Fractal::new(2.5, 1.0, Some(-4.0)).unwrap_err().name,
+            "fractal.rolloff_m"
+        );
     }
 }

@@ -160,7 +160,7 @@ impl JonswapShape {
     /// F(f) in m²/Hz.
     #[inline]
     pub fn density(&self, f_hz: f64) -> f64 {
-        if !(f_hz > 0.0) || f_hz == f64::INFINITY {
+        if f_hz.is_nan() || f_hz <= 0.0 || f_hz == f64::INFINITY {
             return 0.0;
         }
         let iq = self.fp_hz / f_hz;
@@ -173,8 +173,11 @@ impl JonswapShape {
         let mut e = -1.25 * u;
         if self.ln_gamma != 0.0 {
             let d = f_hz / self.fp_hz - 1.0;
-            let c = if d <= 0.0 { C_LOW } else { C_HIGH };
-            e += self.ln_gamma * exp(-d * d * c);
+            let a = d * d * if d <= 0.0 { C_LOW } else { C_HIGH };
+            // Far from the peak γ^r = 1 (and exp would take its slow path).
+            if a < 700.0 {
+                e += self.ln_gamma * exp(-a);
+            }
         }
         let phi = if self.omega_h_per_hz.is_finite() {
             kitaigorodskii(f_hz * self.omega_h_per_hz)
@@ -552,7 +555,7 @@ pub struct Tma {
 impl Tma {
     /// `depth_m` > 0 (+∞ allowed: exactly the JONSWAP).
     pub fn new(jonswap: Jonswap, depth_m: f64) -> Result<Self, ParamError> {
-        if !(depth_m > 0.0) {
+        if depth_m.is_nan() || depth_m <= 0.0 {
             return Err(param(DEPTH, "> 0 m", depth_m));
         }
         let j = jonswap.shape;
@@ -649,10 +652,17 @@ mod tests {
             assert!(rel(pm.fm_hz(), fm) < REL_FORMULA, "fm at U = {u}");
             for ratio in [0.5, 0.8, 1.0, 1.3, 2.0, 5.0] {
                 let f = ratio * fm;
-                let want = 0.0081 * G * G * (2.0 * std::f64::consts::PI).powf(-4.0) * f.powf(-5.0)
+                let want = 0.0081
+                    * G
+                    * G
+                    * (2.0 * std::f64::consts::PI).powf(-4.0)
+                    * f.powf(-5.0)
                     * (-1.25 * (fm / f).powf(4.0)).exp();
                 let got = pm.density(f);
-                assert!(rel(got, want) < REL_FORMULA, "U {u}, f/fm {ratio}: {got} vs {want}");
+                assert!(
+                    rel(got, want) < REL_FORMULA,
+                    "U {u}, f/fm {ratio}: {got} vs {want}"
+                );
             }
         }
         // Literal values (computed separately): U = 15 m/s → fm = 0.08502 Hz,
@@ -660,9 +670,17 @@ mod tests {
         let pm = PiersonMoskowitz::from_wind(15.0).unwrap();
         assert!(rel(pm.peak_hz(), 0.08502) < 1e-12, "fm {}", pm.peak_hz());
         let fm: f64 = 0.08502;
-        let want = 0.0081 * 96.2361 / 1558.545_456_544_039 / fm.powi(5) * (-1.25f64).exp();
-        assert!(rel(pm.density(fm), want) < 1e-9, "F(fm) {} vs {want}", pm.density(fm));
-        assert!(rel(pm.density(fm), 32.2574) < 1e-5, "F(fm) {}", pm.density(fm));
+        let want = 0.0081 * 96.2361 / 1_558.545_456_544_039 / fm.powi(5) * (-1.25f64).exp();
+        assert!(
+            rel(pm.density(fm), want) < 1e-9,
+            "F(fm) {} vs {want}",
+            pm.density(fm)
+        );
+        assert!(
+            rel(pm.density(fm), 32.2574) < 1e-5,
+            "F(fm) {}",
+            pm.density(fm)
+        );
     }
 
     #[test]
@@ -679,7 +697,10 @@ mod tests {
             // The classic Hs = 0.21 U19.5²/g, with U19.5 = 1.074 U10 (the ratio that makes
             // PM's ωp = 0.877 g/U19.5 equal fm = 0.13 g/U10).
             let u195 = 1.074 * u;
-            assert!(rel(hs, 0.21 * u195 * u195 / G) < 0.01, "Hs {hs} vs 0.21 U19.5²/g");
+            assert!(
+                rel(hs, 0.21 * u195 * u195 / G) < 0.01,
+                "Hs {hs} vs 0.21 U19.5²/g"
+            );
             // The numerical integral agrees with the closed form.
             let num = pm.shape.m0_numeric();
             assert!(rel(num, m0) < REL_NUM, "numeric m0 {num} vs {m0}");
@@ -694,7 +715,12 @@ mod tests {
             let f = 0.01 * 1.04f64.powi(i);
             assert_eq!(j.density(f), pm.density(f), "f = {f}");
         }
-        assert!(rel(j.hs_m(), pm.hs_m()) < 1e-10, "{} vs {}", j.hs_m(), pm.hs_m());
+        assert!(
+            rel(j.hs_m(), pm.hs_m()) < 1e-10,
+            "{} vs {}",
+            j.hs_m(),
+            pm.hs_m()
+        );
     }
 
     #[test]
@@ -703,7 +729,11 @@ mod tests {
         // = 1.00817 rad/s (fp = 0.160456 Hz); α = 0.076·(100/(1e5·9.81))^0.22 = 0.0100611.
         const REL_HAND: f64 = 1e-5;
         let j = Jonswap::from_wind_fetch(10.0, 100e3, 3.3).unwrap();
-        assert!(rel(j.fp_hz() * TWO_PI, 1.008_17) < REL_HAND, "ω_p {}", j.fp_hz() * TWO_PI);
+        assert!(
+            rel(j.fp_hz() * TWO_PI, 1.008_17) < REL_HAND,
+            "ω_p {}",
+            j.fp_hz() * TWO_PI
+        );
         assert!(rel(j.fp_hz(), 0.160_456) < REL_HAND, "fp {}", j.fp_hz());
         assert!(rel(j.alpha(), 0.010_061_1) < REL_HAND, "α {}", j.alpha());
         assert_eq!(j.peak_hz(), j.fp_hz());
@@ -722,7 +752,11 @@ mod tests {
             let a = Jonswap::from_wind_fetch(u, full, 3.3).unwrap();
             let b = Jonswap::from_wind_fetch(u, 1e9, 3.3).unwrap();
             assert_eq!(a, b, "U {u}");
-            assert!(rel(b.fp_hz(), pm_peak) < 1e-12, "U {u}: fp {} vs {pm_peak}", b.fp_hz());
+            assert!(
+                rel(b.fp_hz(), pm_peak) < 1e-12,
+                "U {u}: fp {} vs {pm_peak}",
+                b.fp_hz()
+            );
             // Continuity below the cap.
             let c = Jonswap::from_wind_fetch(u, full * (1.0 - 1e-9), 3.3).unwrap();
             assert!(rel(c.fp_hz(), pm_peak) < 1e-8);
@@ -740,11 +774,27 @@ mod tests {
         assert!(rel(pm.hs_m(), 3.0) < 1e-13, "PM Hs {}", pm.hs_m());
         assert!(rel(pm.shape.m0_numeric().sqrt() * 4.0, 3.0) < 1e-10);
         assert!(rel(pm.peak_hz(), 1.0 / 9.0) < 1e-15);
-        for (gamma, tol) in [(1.0, 1e-9), (2.0, 0.0015), (3.3, 0.0015), (5.0, 0.0015), (7.0, 0.01), (10.0, 0.037), (20.0, 0.23)] {
+        for (gamma, tol) in [
+            (1.0, 1e-9),
+            (2.0, 0.0015),
+            (3.3, 0.0015),
+            (5.0, 0.0015),
+            (7.0, 0.01),
+            (10.0, 0.037),
+            (20.0, 0.23),
+        ] {
             let j = Jonswap::from_hs_tp(2.0, 8.0, gamma).unwrap();
-            assert!(rel(j.hs_m(), 2.0) < tol, "γ {gamma}: Hs {} (tolerance {tol})", j.hs_m());
+            assert!(
+                rel(j.hs_m(), 2.0) < tol,
+                "γ {gamma}: Hs {} (tolerance {tol})",
+                j.hs_m()
+            );
             let e = Jonswap::from_hs_tp_exact(2.0, 8.0, gamma).unwrap();
-            assert!(rel(e.hs_m(), 2.0) < 1e-9, "exact γ {gamma}: Hs {}", e.hs_m());
+            assert!(
+                rel(e.hs_m(), 2.0) < 1e-9,
+                "exact γ {gamma}: Hs {}",
+                e.hs_m()
+            );
             assert!(rel(e.density(0.2) / j.density(0.2), e.alpha() / j.alpha()) < 1e-12);
         }
     }
@@ -790,12 +840,18 @@ mod tests {
             for fetch in [1.0, 1e3, 1e9] {
                 for gamma in [1.0, 20.0] {
                     models.push(Box::new(Jonswap::from_wind_fetch(u, fetch, gamma).unwrap()));
-                    models.push(Box::new(Tma::from_wind_fetch(u, fetch, gamma, 0.5).unwrap()));
+                    models.push(Box::new(
+                        Tma::from_wind_fetch(u, fetch, gamma, 0.5).unwrap(),
+                    ));
                 }
             }
         }
         for m in &models {
-            assert!(m.hs_m().is_finite() && m.hs_m() > 0.0, "{m:?}: Hs {}", m.hs_m());
+            assert!(
+                m.hs_m().is_finite() && m.hs_m() > 0.0,
+                "{m:?}: Hs {}",
+                m.hs_m()
+            );
             assert!(m.peak_hz().is_finite() && m.peak_hz() > 0.0, "{m:?}");
             assert!(m.density(m.peak_hz()) > 0.0, "{m:?}: F(peak) = 0");
             for e in -60..=60 {
@@ -803,7 +859,14 @@ mod tests {
                 let v = m.density(f);
                 assert!(v.is_finite() && v >= 0.0, "{m:?}: F({f}) = {v}");
             }
-            for f in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::MIN_POSITIVE, 5e-324] {
+            for f in [
+                0.0,
+                -1.0,
+                f64::NAN,
+                f64::INFINITY,
+                f64::MIN_POSITIVE,
+                5e-324,
+            ] {
                 assert_eq!(m.density(f), 0.0, "{m:?}: F({f})");
             }
         }
@@ -815,14 +878,36 @@ mod tests {
         assert_eq!(e.name, "--wind-speed (wind.speed_mps)");
         assert_eq!(e.allowed, "> 0 m/s");
         assert_eq!(e.got, "-3");
-        assert_eq!(Jonswap::from_wind_fetch(10.0, 1e4, 0.5).unwrap_err().name, "--gamma (spectrum.gamma)");
-        assert_eq!(Jonswap::from_wind_fetch(10.0, 1e4, 21.0).unwrap_err().allowed, "between 1 and 20");
+        assert_eq!(
+            Jonswap::from_wind_fetch(10.0, 1e4, 0.5).unwrap_err().name,
+            "--gamma (spectrum.gamma)"
+        );
+        assert_eq!(
+            Jonswap::from_wind_fetch(10.0, 1e4, 21.0)
+                .unwrap_err()
+                .allowed,
+            "between 1 and 20"
+        );
         let f = Jonswap::from_wind_fetch(10.0, -2000.0, 3.3).unwrap_err();
-        assert_eq!((f.name.as_str(), f.got.as_str()), ("--fetch-km (spectrum.fetch_km)", "-2"));
-        assert_eq!(Jonswap::from_hs_tp(0.0, 8.0, 3.3).unwrap_err().name, "--hs (spectrum.hs_m)");
-        assert_eq!(PiersonMoskowitz::from_hs_tp(1.0, f64::NAN).unwrap_err().name, "--tp (spectrum.tp_s)");
+        assert_eq!(
+            (f.name.as_str(), f.got.as_str()),
+            ("--fetch-km (spectrum.fetch_km)", "-2")
+        );
+        assert_eq!(
+            Jonswap::from_hs_tp(0.0, 8.0, 3.3).unwrap_err().name,
+            "--hs (spectrum.hs_m)"
+        );
+        assert_eq!(
+            PiersonMoskowitz::from_hs_tp(1.0, f64::NAN)
+                .unwrap_err()
+                .name,
+            "--tp (spectrum.tp_s)"
+        );
         let j = Jonswap::from_wind_fetch(10.0, 1e4, 3.3).unwrap();
-        assert_eq!(Tma::new(j, 0.0).unwrap_err().name, "--depth (spectrum.depth_m)");
+        assert_eq!(
+            Tma::new(j, 0.0).unwrap_err().name,
+            "--depth (spectrum.depth_m)"
+        );
         assert!(Tma::new(j, f64::NAN).is_err());
     }
 }

@@ -45,9 +45,23 @@ pub(crate) fn check_frequency_spectrum(name: &str, s: &dyn FrequencySpectrum) {
             fine = (f, v);
         }
     }
-    assert!((fine.0 / peak - 1.0).abs() < PEAK_REL, "{name}: fine-grid maximum at {} Hz, peak_hz {peak}", fine.0);
-    assert!(best.1 <= fine.1 * (1.0 + 1e-9), "{name}: wide-grid maximum {} at {} Hz above the peak's {}", best.1, best.0, fine.1);
-    assert!((best.0 / peak - 1.0).abs() < 0.05, "{name}: wide-grid maximum at {} Hz, peak_hz {peak}", best.0);
+    assert!(
+        (fine.0 / peak - 1.0).abs() < PEAK_REL,
+        "{name}: fine-grid maximum at {} Hz, peak_hz {peak}",
+        fine.0
+    );
+    assert!(
+        best.1 <= fine.1 * (1.0 + 1e-9),
+        "{name}: wide-grid maximum {} at {} Hz above the peak's {}",
+        best.1,
+        best.0,
+        fine.1
+    );
+    assert!(
+        (best.0 / peak - 1.0).abs() < 0.05,
+        "{name}: wide-grid maximum at {} Hz, peak_hz {peak}",
+        best.0
+    );
     // ∫F df by Simpson in u = ln f.
     let (a, b) = ((0.02 * peak).ln(), (1e4 * peak).ln());
     let n = (((b - a) / 1e-4) as usize) & !1;
@@ -62,7 +76,11 @@ pub(crate) fn check_frequency_spectrum(name: &str, s: &dyn FrequencySpectrum) {
     }
     let m0 = sum * h / 3.0;
     let want = s.hs_m() * s.hs_m() / 16.0;
-    assert!((m0 - want).abs() <= M0_REL * want, "{name}: ∫F df = {m0}, Hs²/16 = {want} (Hs {})", s.hs_m());
+    assert!(
+        (m0 - want).abs() <= M0_REL * want,
+        "{name}: ∫F df = {m0}, Hs²/16 = {want} (Hs {})",
+        s.hs_m()
+    );
 }
 
 /// Checks one spreading model at r = f/fp ∈ {0.3, 0.7, 1, 1.5, 3, 8}: ∫_{−π}^{π} D dθ = 1
@@ -74,12 +92,21 @@ pub(crate) fn check_spreading(name: &str, sp: Spreading, fp: f64, u10: f64) {
         let f = r * fp;
         let even = |t: f64| 0.5 * (sp.density(f, fp, u10, t) + sp.density(f, fp, u10, -t));
         let total = super::spreading::integrate_circle_even(even, 0.0, 400);
-        assert!((total - 1.0).abs() <= NORM_REL, "{name} {sp:?} at f/fp {r}: ∫D dθ = {total}");
+        assert!(
+            (total - 1.0).abs() <= NORM_REL,
+            "{name} {sp:?} at f/fp {r}: ∫D dθ = {total}"
+        );
         for i in 0..=720 {
             let t = pi * i as f64 / 720.0;
             let (a, b) = (sp.density(f, fp, u10, t), sp.density(f, fp, u10, -t));
-            assert!(a.is_finite() && a >= 0.0, "{name} {sp:?}: D({f}, {t}) = {a}");
-            assert!((a - b).abs() <= SYM_REL * a, "{name} {sp:?}: D({t}) = {a}, D(−θ) = {b}");
+            assert!(
+                a.is_finite() && a >= 0.0,
+                "{name} {sp:?}: D({f}, {t}) = {a}"
+            );
+            assert!(
+                (a - b).abs() <= SYM_REL * a,
+                "{name} {sp:?}: D({t}) = {a}, D(−θ) = {b}"
+            );
         }
     }
 }
@@ -87,10 +114,16 @@ pub(crate) fn check_spreading(name: &str, sp: Spreading, fp: f64, u10: f64) {
 fn all_frequency_spectra() -> Vec<(String, Box<dyn FrequencySpectrum>)> {
     let mut v: Vec<(String, Box<dyn FrequencySpectrum>)> = Vec::new();
     for u in [3.0, 7.0, 15.0, 30.0] {
-        v.push((format!("PM {u} m/s"), Box::new(PiersonMoskowitz::from_wind(u).unwrap())));
+        v.push((
+            format!("PM {u} m/s"),
+            Box::new(PiersonMoskowitz::from_wind(u).unwrap()),
+        ));
     }
     for (hs, tp) in [(0.5, 3.0), (2.0, 8.0), (9.0, 15.0)] {
-        v.push((format!("PM Hs {hs} Tp {tp}"), Box::new(PiersonMoskowitz::from_hs_tp(hs, tp).unwrap())));
+        v.push((
+            format!("PM Hs {hs} Tp {tp}"),
+            Box::new(PiersonMoskowitz::from_hs_tp(hs, tp).unwrap()),
+        ));
     }
     for gamma in [1.0, 3.3, 7.0] {
         for u in [5.0, 10.0, 20.0] {
@@ -102,7 +135,10 @@ fn all_frequency_spectra() -> Vec<(String, Box<dyn FrequencySpectrum>)> {
             }
         }
         for (hs, tp) in [(1.0, 5.0), (4.0, 11.0)] {
-            v.push((format!("JONSWAP Hs {hs} Tp {tp} γ {gamma}"), Box::new(Jonswap::from_hs_tp(hs, tp, gamma).unwrap())));
+            v.push((
+                format!("JONSWAP Hs {hs} Tp {tp} γ {gamma}"),
+                Box::new(Jonswap::from_hs_tp(hs, tp, gamma).unwrap()),
+            ));
             v.push((
                 format!("JONSWAP exact Hs {hs} Tp {tp} γ {gamma}"),
                 Box::new(Jonswap::from_hs_tp_exact(hs, tp, gamma).unwrap()),
@@ -115,7 +151,10 @@ fn all_frequency_spectra() -> Vec<(String, Box<dyn FrequencySpectrum>)> {
                     Box::new(Tma::from_wind_fetch(u, 50e3, gamma, depth).unwrap()),
                 ));
             }
-            v.push((format!("TMA Hs 2 Tp 9 γ {gamma} depth {depth}"), Box::new(Tma::from_hs_tp(2.0, 9.0, gamma, depth).unwrap())));
+            v.push((
+                format!("TMA Hs 2 Tp 9 γ {gamma} depth {depth}"),
+                Box::new(Tma::from_hs_tp(2.0, 9.0, gamma, depth).unwrap()),
+            ));
         }
     }
     v
@@ -132,7 +171,12 @@ fn every_frequency_spectrum_satisfies_the_invariants() {
 
 #[test]
 fn every_spreading_model_satisfies_the_invariants() {
-    for model in [SpreadingModel::Cos2, SpreadingModel::Hasselmann, SpreadingModel::Mitsuyasu, SpreadingModel::DonelanBanner] {
+    for model in [
+        SpreadingModel::Cos2,
+        SpreadingModel::Hasselmann,
+        SpreadingModel::Mitsuyasu,
+        SpreadingModel::DonelanBanner,
+    ] {
         for swell in [0.0, 0.3, 1.0, 4.0, 10.0] {
             let sp = Spreading::new(model, swell).unwrap();
             for (fp, u10) in [(0.1, 10.0), (0.3, 5.0), (0.06, 30.0), (0.5, 25.0)] {
