@@ -838,7 +838,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| report.file.clone());
         let image = render_plot(&analysis, &name).map_err(|e| Error::io(&staged.path, e))?;
-        write_rgb_png(staged, &image, PLOT_SIZE)?;
+        crate::export::rgb8::write(staged, &image, PLOT_SIZE)?;
     }
     let mut out = std::io::stdout().lock();
     if args.json {
@@ -880,25 +880,6 @@ fn stage_plot(path: &Path, input: &Path) -> Result<Staged, Error> {
         });
     }
     Staged::create(path)
-}
-
-/// Encodes an RGB buffer as an 8-bit RGB PNG into the staged file.
-fn write_rgb_png(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
-    staged.write_with(|out| {
-        let mut enc = png::Encoder::new(out, w, h);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-        writer
-            .write_image_data(rgb)
-            .map_err(std::io::Error::other)?;
-        writer.finish().map_err(std::io::Error::other)
-    })
-}
-
-/// A drawing error as an I/O error (a failure while working: exit code 1).
-fn draw_err<E: std::fmt::Display>(e: E) -> std::io::Error {
-    std::io::Error::other(format!("cannot draw the plot: {e}"))
 }
 
 /// A number with 3 significant digits and no trailing zeros (`0.0123`, `45.6`, `1e-5`).
@@ -961,14 +942,14 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
     let clamp = |v: f64| v.clamp(y_lo, y_hi);
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(draw_err)?;
+        root.fill(&WHITE).map_err(crate::export::rgb8::draw_err)?;
         let (head, body) = root.split_vertically(62);
         head.draw(&Text::new(
             format!("{name}: radial wavenumber spectrum S(k)"),
             (12, 8),
             (FONT, 22).into_font().style(FontStyle::Bold),
         ))
-        .map_err(draw_err)?;
+        .map_err(crate::export::rgb8::draw_err)?;
         let mut sub = format!(
             "{}×{} over {}×{} m  ·  Hs {} m",
             a.nx,
@@ -985,7 +966,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             );
         }
         head.draw(&Text::new(sub, (12, 36), (FONT, 16)))
-            .map_err(draw_err)?;
+            .map_err(crate::export::rgb8::draw_err)?;
         let mut chart = ChartBuilder::on(&body)
             .margin_left(10)
             .margin_right(25)
@@ -994,7 +975,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d((k_lo..k_hi).log_scale(), (y_lo..y_hi).log_scale())
-            .map_err(draw_err)?;
+            .map_err(crate::export::rgb8::draw_err)?;
         chart
             .configure_mesh()
             .x_desc("wavenumber k (rad/m)")
@@ -1006,7 +987,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(205, 205, 205))
             .draw()
-            .map_err(draw_err)?;
+            .map_err(crate::export::rgb8::draw_err)?;
         let blue = RGBColor(30, 90, 200);
         let pale = RGBColor(150, 180, 230);
         let red = RGBColor(200, 30, 30);
@@ -1036,7 +1017,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
                 .collect();
             chart
                 .draw_series(LineSeries::new(curve, red.stroke_width(2)))
-                .map_err(draw_err)?
+                .map_err(crate::export::rgb8::draw_err)?
                 .label(format!(
                     "target: expected S(k), {} ({})",
                     t.spectrum, t.method
@@ -1047,7 +1028,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
         }
         chart
             .draw_series(LineSeries::new(complete, blue.stroke_width(2)))
-            .map_err(draw_err)?
+            .map_err(crate::export::rgb8::draw_err)?
             .label("measured")
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], blue.stroke_width(2))
@@ -1055,7 +1036,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
         if partial.len() > 1 {
             chart
                 .draw_series(LineSeries::new(partial, pale.stroke_width(2)))
-                .map_err(draw_err)?
+                .map_err(crate::export::rgb8::draw_err)?
                 .label("measured, beyond Nyquist (partial annuli)")
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], pale.stroke_width(2))
@@ -1072,7 +1053,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
                     4,
                     gray.stroke_width(1),
                 ))
-                .map_err(draw_err)?
+                .map_err(crate::export::rgb8::draw_err)?
                 .label(format!("peak: λ = {} m{dir}", short_number(wl)))
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], gray.stroke_width(1))
@@ -1085,8 +1066,8 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .draw()
-            .map_err(draw_err)?;
-        root.present().map_err(draw_err)?;
+            .map_err(crate::export::rgb8::draw_err)?;
+        root.present().map_err(crate::export::rgb8::draw_err)?;
     }
     Ok(buf)
 }

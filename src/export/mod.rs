@@ -9,6 +9,7 @@
 //! image viewer +x points right and +y points down.
 
 pub mod png16;
+pub mod rgb8;
 pub mod sidecar;
 pub mod tiff32;
 
