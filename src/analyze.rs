@@ -52,6 +52,7 @@ use serde_json::Value;
 
 use crate::config::Params;
 use crate::error::Error;
+use crate::export::rgb8::draw_err;
 use crate::export::{HeightMapping, Staged};
 use crate::field::fft::{is_resolved, signed_index};
 use crate::grid::{Grid, GridSpec};
@@ -942,14 +943,14 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
     let clamp = |v: f64| v.clamp(y_lo, y_hi);
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(crate::export::rgb8::draw_err)?;
+        root.fill(&WHITE).map_err(draw_err)?;
         let (head, body) = root.split_vertically(62);
         head.draw(&Text::new(
             format!("{name}: radial wavenumber spectrum S(k)"),
             (12, 8),
             (FONT, 22).into_font().style(FontStyle::Bold),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         let mut sub = format!(
             "{}×{} over {}×{} m  ·  Hs {} m",
             a.nx,
@@ -966,7 +967,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             );
         }
         head.draw(&Text::new(sub, (12, 36), (FONT, 16)))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let mut chart = ChartBuilder::on(&body)
             .margin_left(10)
             .margin_right(25)
@@ -975,7 +976,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d((k_lo..k_hi).log_scale(), (y_lo..y_hi).log_scale())
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         chart
             .configure_mesh()
             .x_desc("wavenumber k (rad/m)")
@@ -987,7 +988,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(205, 205, 205))
             .draw()
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let blue = RGBColor(30, 90, 200);
         let pale = RGBColor(150, 180, 230);
         let red = RGBColor(200, 30, 30);
@@ -1017,7 +1018,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
                 .collect();
             chart
                 .draw_series(LineSeries::new(curve, red.stroke_width(2)))
-                .map_err(crate::export::rgb8::draw_err)?
+                .map_err(draw_err)?
                 .label(format!(
                     "target: expected S(k), {} ({})",
                     t.spectrum, t.method
@@ -1028,7 +1029,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
         }
         chart
             .draw_series(LineSeries::new(complete, blue.stroke_width(2)))
-            .map_err(crate::export::rgb8::draw_err)?
+            .map_err(draw_err)?
             .label("measured")
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], blue.stroke_width(2))
@@ -1036,7 +1037,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
         if partial.len() > 1 {
             chart
                 .draw_series(LineSeries::new(partial, pale.stroke_width(2)))
-                .map_err(crate::export::rgb8::draw_err)?
+                .map_err(draw_err)?
                 .label("measured, beyond Nyquist (partial annuli)")
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], pale.stroke_width(2))
@@ -1053,7 +1054,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
                     4,
                     gray.stroke_width(1),
                 ))
-                .map_err(crate::export::rgb8::draw_err)?
+                .map_err(draw_err)?
                 .label(format!("peak: λ = {} m{dir}", short_number(wl)))
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], gray.stroke_width(1))
@@ -1066,8 +1067,8 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .draw()
-            .map_err(crate::export::rgb8::draw_err)?;
-        root.present().map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
     }
     Ok(buf)
 }

@@ -29,6 +29,7 @@ use crate::config::validate::model_name;
 use crate::config::{Params, SpectrumModel};
 use crate::error::{Error, ParamError};
 use crate::export::Staged;
+use crate::export::rgb8::draw_err;
 use crate::field::{SeaModel, sea_model};
 use crate::spectrum::Fractal;
 
@@ -394,7 +395,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
     let y_lo = 10f64.powf((peak * 10f64.powf(-PLOT_DECADES)).log10().floor());
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(crate::export::rgb8::draw_err)?;
+        root.fill(&WHITE).map_err(draw_err)?;
         let (head, body) = root.split_vertically(62);
         let name = model_name(params.spectrum.model);
         head.draw(&Text::new(
@@ -402,7 +403,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             (12, 8),
             (FONT, 22).into_font().style(FontStyle::Bold),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         head.draw(&Text::new(
             format!(
                 "{}  →  Hs {} m, fp {} Hz (Tp {} s)",
@@ -414,7 +415,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             (12, 36),
             (FONT, 16),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         let mut chart = ChartBuilder::on(&body)
             .margin_left(10)
             .margin_right(25)
@@ -429,7 +430,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
                     .with_light_points(log_ticks(f_lo, f_hi, false)),
                 (y_lo..y_hi).log_scale(),
             )
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         chart
             .configure_mesh()
             .x_desc("frequency f (Hz)")
@@ -441,12 +442,12 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(205, 205, 205))
             .draw()
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         // The curve, without the part below the axis (F underflows to 0 far below fp).
         let visible = curve.iter().copied().filter(|p| p.1 >= y_lo);
         chart
             .draw_series(LineSeries::new(visible, BLUE.stroke_width(2)))
-            .map_err(crate::export::rgb8::draw_err)?
+            .map_err(draw_err)?
             .label("F(f)")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
         let red = RGBColor(200, 30, 30);
@@ -457,7 +458,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
                 4,
                 red.stroke_width(2),
             ))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let label = format!("fp = {} Hz", tick_text(fp));
         // Below the curve's right flank, which stays high for decades beyond fp.
         let bottom = chart.backend_coord(&(fp, y_lo));
@@ -466,7 +467,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             (bottom.0 + 7, bottom.1 - 26),
             (FONT, 16).into_font().color(&red),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         if !marks.is_empty() {
             chart
                 .draw_series(
@@ -476,7 +477,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
                         .filter(|p| p.1 >= y_lo && p.1 <= y_hi)
                         .map(|p| Circle::new(p, 5, BLACK.stroke_width(2))),
                 )
-                .map_err(crate::export::rgb8::draw_err)?
+                .map_err(draw_err)?
                 .label("--freq points")
                 .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.stroke_width(2)));
         }
@@ -487,8 +488,8 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
             .draw()
-            .map_err(crate::export::rgb8::draw_err)?;
-        root.present().map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
     }
     Ok(buf)
 }
@@ -649,15 +650,15 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
     const TOP: i32 = 70;
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        root.fill(&WHITE).map_err(crate::export::rgb8::draw_err)?;
+        root.fill(&WHITE).map_err(draw_err)?;
         root.draw(&Text::new(
             map.title.clone(),
             (12, 8),
             (FONT, 20).into_font().style(FontStyle::Bold),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         root.draw(&Text::new(map.subtitle.clone(), (12, 36), (FONT, 14)))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let half = map.half_rad_per_m;
         // Ticks at 0 come out as ±1e-17 from the evenly spaced key points.
         let snap = |v: f64| if v.abs() < 1e-9 * half { 0.0 } else { v };
@@ -671,7 +672,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
             .x_label_area_size(50)
             .y_label_area_size(70)
             .build_cartesian_2d(-half..half, -half..half)
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let (xr, yr) = chart.plotting_area().get_pixel_range();
         let (pw, ph) = ((xr.end - xr.start) as usize, (yr.end - yr.start) as usize);
         let n = pw.min(ph);
@@ -687,7 +688,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
             for col in 0..n {
                 let c = color(values[row * n + col]);
                 root.draw_pixel((xr.start + col as i32, yr.start + row as i32), &c)
-                    .map_err(crate::export::rgb8::draw_err)?;
+                    .map_err(draw_err)?;
             }
         }
         chart
@@ -702,7 +703,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
             .x_labels(7)
             .y_labels(7)
             .draw()
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         let white = WHITE.mix(0.9);
         if let Some(kp) = map.kp_rad_per_m {
             let ring: Vec<(f64, f64)> = (0..=180)
@@ -713,7 +714,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
                 .collect();
             chart
                 .draw_series(DashedLineSeries::new(ring, 5, 5, white.stroke_width(1)))
-                .map_err(crate::export::rgb8::draw_err)?;
+                .map_err(draw_err)?;
             // Away from the wind arrow.
             let a = map.wind_dir_rad + 2.4;
             let at = chart.backend_coord(&(kp * a.cos(), kp * a.sin()));
@@ -722,7 +723,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
                 (at.0 + 4, at.1 - 18),
                 (FONT, 15).into_font().color(&WHITE),
             ))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         }
         if map.show_wind {
             // From the origin toward the wind direction, 0.8 of the way to the edge.
@@ -739,34 +740,34 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
             let l = lmax - (y - by0) as f64 / (by1 - by0) as f64 * (lmax - lmin);
             let c = ViridisRGB.get_color_normalized(l, lmin, lmax);
             root.draw(&Rectangle::new([(bx, y), (bx + 18, y + 1)], c.filled()))
-                .map_err(crate::export::rgb8::draw_err)?;
+                .map_err(draw_err)?;
         }
         root.draw(&Rectangle::new(
             [(bx, by0), (bx + 18, by1)],
             BLACK.stroke_width(1),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
         for d in 0..=(PLOT2D_DECADES as i32) {
             let y = by0 + ((by1 - by0) as f64 * d as f64 / PLOT2D_DECADES).round() as i32;
             root.draw(&PathElement::new(
                 vec![(bx + 18, y), (bx + 22, y)],
                 BLACK.stroke_width(1),
             ))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
             root.draw(&Text::new(
                 decade_text(10f64.powf(lmax - d as f64)),
                 (bx + 24, y - 7),
                 (FONT, 13),
             ))
-            .map_err(crate::export::rgb8::draw_err)?;
+            .map_err(draw_err)?;
         }
         root.draw(&Text::new(
             map.quantity.clone(),
             (bx - 6, by0 - 22),
             (FONT, 14),
         ))
-        .map_err(crate::export::rgb8::draw_err)?;
-        root.present().map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
     }
     Ok(buf)
 }
@@ -781,7 +782,7 @@ fn draw_wind_arrow(
 ) -> std::io::Result<()> {
     let arrow = RGBColor(255, 80, 60);
     root.draw(&PathElement::new(vec![a, b], arrow.stroke_width(3)))
-        .map_err(crate::export::rgb8::draw_err)?;
+        .map_err(draw_err)?;
     // Pixel directions: +ky is up on the screen.
     let (s, c) = dir_rad.sin_cos();
     let (ux, uy) = (c, -s);
@@ -795,7 +796,7 @@ fn draw_wind_arrow(
         vec![b, head(16.0, 7.0), head(16.0, -7.0)],
         arrow.filled(),
     ))
-    .map_err(crate::export::rgb8::draw_err)?;
+    .map_err(draw_err)?;
     // The label beside the shaft at 60 % of its length, on the upper side.
     let (mut nx, mut ny) = (-uy, ux);
     if ny > 0.0 || (ny == 0.0 && nx < 0.0) {
@@ -813,9 +814,8 @@ fn draw_wind_arrow(
         [(at.0 - 22, at.1 - 10), (at.0 + 22, at.1 + 10)],
         BLACK.mix(0.55).filled(),
     ))
-    .map_err(crate::export::rgb8::draw_err)?;
-    root.draw(&Text::new("wind", at, style))
-        .map_err(crate::export::rgb8::draw_err)
+    .map_err(draw_err)?;
+    root.draw(&Text::new("wind", at, style)).map_err(draw_err)
 }
 
 #[cfg(test)]
