@@ -3,9 +3,11 @@
 //! Parseval, the FFT method against its target spectrum, and bad input (exit code 2, one
 //! line naming the file).
 
+mod common;
+
+use common::{json_file, names_in, num, run_ok, run_rejected};
 use std::path::Path;
 
-use assert_cmd::Command;
 use seasynth::export::tiff32;
 use seasynth::grid::{Grid, GridSpec};
 use serde_json::Value;
@@ -71,27 +73,6 @@ const TARGET_KEYS: &[&str] = &[
 ];
 const TARGET_BIN_KEYS: &[&str] = &["target_power_m2", "target_s_m2_per_rad_per_m"];
 
-fn seasynth() -> Command {
-    Command::cargo_bin("seasynth").expect("the seasynth binary is built")
-}
-
-/// Runs `seasynth ARGS` in `dir`, panics with its stderr unless it succeeds, returns stdout.
-fn run_ok(dir: &Path, args: &[&str]) -> String {
-    let out = seasynth()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    assert!(
-        out.status.success(),
-        "seasynth {} failed with {:?}:\n{}",
-        args.join(" "),
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("stdout is UTF-8")
-}
-
 /// `generate --quiet ARGS` in `dir`.
 fn generate(dir: &Path, args: &[&str]) {
     let mut all = vec!["generate", "--quiet"];
@@ -111,18 +92,6 @@ fn analyze_json(dir: &Path, file: &str) -> Value {
         serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}):\n{out}"));
     assert!(doc.is_object(), "one JSON object: {doc}");
     doc
-}
-
-fn json_file(path: &Path) -> Value {
-    let bytes =
-        std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    serde_json::from_slice(&bytes).unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
-}
-
-fn num(doc: &Value, pointer: &str) -> f64 {
-    doc.pointer(pointer)
-        .and_then(Value::as_f64)
-        .unwrap_or_else(|| panic!("no number at {pointer} in {doc:#}"))
 }
 
 fn bins(doc: &Value) -> &Vec<Value> {
@@ -159,28 +128,9 @@ fn axial_distance_deg(a: f64, b: f64) -> f64 {
 /// Runs `analyze ARGS` in `dir` and checks the rejection: exit code 2, nothing on stdout,
 /// exactly one line on stderr containing every fragment.
 fn assert_rejected(dir: &Path, args: &[&str], fragments: &[&str]) {
-    let out = seasynth()
-        .current_dir(dir)
-        .arg("analyze")
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "analyze {}: exit code 2 expected, stderr:\n{err}",
-        args.join(" ")
-    );
-    assert!(out.stdout.is_empty(), "nothing on stdout: {:?}", out.stdout);
-    assert_eq!(
-        err.trim_end().lines().count(),
-        1,
-        "one line on stderr:\n{err}"
-    );
-    for f in fragments {
-        assert!(err.contains(f), "stderr should contain `{f}`:\n{err}");
-    }
+    let mut all = vec!["analyze"];
+    all.extend_from_slice(args);
+    run_rejected(dir, &all, fragments);
 }
 
 #[test]
@@ -464,21 +414,6 @@ fn pixels_near(rgb: &[u8], color: [u8; 3]) -> usize {
     rgb.chunks_exact(3)
         .filter(|p| p.iter().zip(color).all(|(&a, b)| a.abs_diff(b) <= 40))
         .count()
-}
-
-/// Every entry directly in `dir`, hidden ones included, sorted.
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("readable folder")
-        .map(|e| {
-            e.expect("folder entry")
-                .file_name()
-                .to_string_lossy()
-                .into_owned()
-        })
-        .collect();
-    names.sort();
-    names
 }
 
 #[test]

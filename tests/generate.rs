@@ -2,35 +2,17 @@
 //! through PNG, TIFF and the sidecar, the methods against each other, the wind direction,
 //! the α image, and bad input (exit code 2, one line, no file left behind).
 
+mod common;
+
+use common::{json_file, names_in, num, read, run_ok, run_rejected};
 use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
 use seasynth::cli::FieldArgs;
 use seasynth::export::{png16, tiff32};
 use serde_json::Value;
 
 /// Relative tolerance of comparisons that go through an f32 product.
 const REL_TOL: f64 = 1e-6;
-
-fn seasynth() -> Command {
-    Command::cargo_bin("seasynth").expect("the seasynth binary is built")
-}
-
-/// Runs `seasynth ARGS` in `dir` and panics with its stderr unless it succeeds.
-fn run_ok(dir: &Path, args: &[&str]) {
-    let out = seasynth()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    assert!(
-        out.status.success(),
-        "seasynth {} failed with {:?}:\n{}",
-        args.join(" "),
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
 
 /// `generate` with a small grid, the given arguments, in `dir`.
 fn generate(dir: &Path, args: &[&str]) {
@@ -39,27 +21,12 @@ fn generate(dir: &Path, args: &[&str]) {
     run_ok(dir, &all);
 }
 
-fn read(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-}
-
 fn tiff(path: &Path) -> (usize, usize, Vec<f32>) {
     tiff32::read(path).unwrap_or_else(|e| panic!("{} is not a float TIFF: {e}", path.display()))
 }
 
 fn png(path: &Path) -> (usize, usize, Vec<u16>) {
     png16::read(path).unwrap_or_else(|e| panic!("{} is not a 16-bit gray PNG: {e}", path.display()))
-}
-
-fn json(path: &Path) -> Value {
-    serde_json::from_slice(&read(path))
-        .unwrap_or_else(|e| panic!("{} is not JSON: {e}", path.display()))
-}
-
-fn num(doc: &Value, pointer: &str) -> f64 {
-    doc.pointer(pointer)
-        .and_then(Value::as_f64)
-        .unwrap_or_else(|| panic!("sidecar has no number at {pointer}: {doc:#}"))
 }
 
 /// Every file (not folder) under `dir`, hidden ones included, sorted.
@@ -75,21 +42,6 @@ fn files_under(dir: &Path) -> Vec<PathBuf> {
     }
     found.sort();
     found
-}
-
-/// File names directly in `dir`, sorted.
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("readable folder")
-        .map(|e| {
-            e.expect("folder entry")
-                .file_name()
-                .to_string_lossy()
-                .into_owned()
-        })
-        .collect();
-    names.sort();
-    names
 }
 
 /// Asserts that `a` and `b` hold the same bytes, saying where they first differ.
@@ -113,35 +65,10 @@ fn assert_same_bytes(a: &Path, b: &Path) {
 /// left anywhere in the folder (no outputs, sidecars or hidden `.part` files).
 fn assert_rejected(args: &[&str], fragments: &[&str]) {
     let dir = tempfile::tempdir().unwrap();
-    let out = seasynth()
-        .current_dir(dir.path())
-        .arg("generate")
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let mut all = vec!["generate"];
+    all.extend_from_slice(args);
+    run_rejected(dir.path(), &all, fragments);
     let shown = format!("`generate {}`", args.join(" "));
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "{shown} must exit with code 2; stderr:\n{stderr}"
-    );
-    assert!(
-        out.stdout.is_empty(),
-        "{shown} printed on stdout: {}",
-        String::from_utf8_lossy(&out.stdout)
-    );
-    assert_eq!(
-        stderr.lines().count(),
-        1,
-        "{shown} must print exactly one line on stderr, got:\n{stderr}"
-    );
-    for f in fragments {
-        assert!(
-            stderr.contains(f),
-            "{shown}: stderr does not name `{f}`:\n{stderr}"
-        );
-    }
     let left = files_under(dir.path());
     assert!(left.is_empty(), "{shown} left files behind: {left:?}");
 }
@@ -201,7 +128,7 @@ fn generate_without_arguments_writes_the_li_tian_png_tiff_and_sidecar_under_out(
     let (w, h, heights) = tiff(&out.join("li-tian.tif"));
     assert_eq!((w, h), (512, 512), "TIFF size");
 
-    let doc = json(&out.join("li-tian.json"));
+    let doc = json_file(&out.join("li-tian.json"));
     for key in ["min_m", "max_m", "mean_m", "std_m", "hs_m"] {
         num(&doc, &format!("/stats/{key}"));
     }
@@ -327,7 +254,7 @@ fn png_decoded_with_the_sidecar_mapping_is_within_one_step_of_the_tiff_heights()
             "--size", "96x64", "--extent", "192x128", "--seed", "5", "-o", "m.png", "-o", "m.tif",
         ],
     );
-    let doc = json(&dir.path().join("m.json"));
+    let doc = json_file(&dir.path().join("m.json"));
     let (min, max) = (num(&doc, "/mapping/min_m"), num(&doc, "/mapping/max_m"));
     let step = (max - min) / 65535.0;
     assert!(step > 0.0, "a mapping of positive span: {min}..{max}");
@@ -378,7 +305,7 @@ fn height_range_sets_the_sidecar_mapping_and_clamps_heights_outside_it() {
             "c.tif",
         ],
     );
-    let doc = json(&dir.path().join("c.json"));
+    let doc = json_file(&dir.path().join("c.json"));
     assert_eq!(num(&doc, "/mapping/min_m"), -2.0, "mapping min: {doc:#}");
     assert_eq!(num(&doc, "/mapping/max_m"), 2.0, "mapping max: {doc:#}");
     let step = 4.0 / 65535.0;
@@ -436,7 +363,7 @@ fn sidecar_given_as_preset_regenerates_identical_png_and_tiff_bytes() {
             "a.tif",
         ],
     );
-    let a = json(&dir.path().join("a.json"));
+    let a = json_file(&dir.path().join("a.json"));
     let p = &a["params"];
     assert_eq!(
         (
@@ -463,7 +390,7 @@ fn sidecar_given_as_preset_regenerates_identical_png_and_tiff_bytes() {
     );
     assert_same_bytes(&dir.path().join("a.png"), &dir.path().join("b.png"));
     assert_same_bytes(&dir.path().join("a.tif"), &dir.path().join("b.tif"));
-    let b = json(&dir.path().join("b.json"));
+    let b = json_file(&dir.path().join("b.json"));
     assert_eq!(a["params"], b["params"], "regenerated parameters");
 }
 
@@ -566,7 +493,10 @@ fn hybrid_with_alpha_zero_is_beta_times_the_perlin_method_field() {
         "hyb.tif",
     ]);
     generate(dir.path(), &args);
-    let beta = num(&json(&dir.path().join("hyb.json")), "/synthesis/beta_m");
+    let beta = num(
+        &json_file(&dir.path().join("hyb.json")),
+        "/synthesis/beta_m",
+    );
     assert_eq!(beta, 0.5, "the sidecar's β");
     let (w, _, perlin) = tiff(&dir.path().join("perlin.tif"));
     let (_, _, hyb) = tiff(&dir.path().join("hyb.tif"));
@@ -845,7 +775,10 @@ fn alpha_image_selects_the_fft_field_where_white_and_beta_times_perlin_where_bla
     args.extend(["--method", "perlin", "-o", "perlin.tif"]);
     generate(dir.path(), &args);
 
-    let beta = num(&json(&dir.path().join("hyb.json")), "/synthesis/beta_m");
+    let beta = num(
+        &json_file(&dir.path().join("hyb.json")),
+        "/synthesis/beta_m",
+    );
     assert!(beta > 0.0, "β from the sidecar: {beta}");
     let (w, h, hyb) = tiff(&dir.path().join("hyb.tif"));
     assert_eq!((w, h), (nx, ny), "hybrid TIFF size");
@@ -883,7 +816,7 @@ fn png_and_tiff_of_one_stem_share_one_sidecar_listing_both() {
         ["a.json", "a.png", "a.tif"],
         "two outputs and one sidecar"
     );
-    let doc = json(&dir.path().join("a.json"));
+    let doc = json_file(&dir.path().join("a.json"));
     let files = doc["files"]
         .as_array()
         .unwrap_or_else(|| panic!("sidecar `files` is not a list: {doc:#}"));

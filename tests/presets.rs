@@ -1,8 +1,10 @@
 //! `seasynth presets`: the list, printing one as TOML, and an unknown name.
 
+mod common;
+
+use common::{read, run_ok, run_rejected};
 use std::path::Path;
 
-use assert_cmd::Command;
 use seasynth::config::presets::BUILTIN;
 
 /// The presets the product promises so far.
@@ -15,31 +17,6 @@ const EXPECTED: &[&str] = &[
     "li-tian-135",
     "tessendorf-usc",
 ];
-
-fn seasynth() -> Command {
-    Command::cargo_bin("seasynth").expect("the seasynth binary is built")
-}
-
-/// Runs `seasynth ARGS` in `dir`; panics with stderr unless it succeeds; returns stdout.
-fn run_ok(dir: &Path, args: &[&str]) -> String {
-    let out = seasynth()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    assert!(
-        out.status.success(),
-        "seasynth {} failed with {:?}:\n{}",
-        args.join(" "),
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8 output")
-}
-
-fn read(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-}
 
 #[test]
 fn presets_lists_every_builtin_preset_with_a_description() {
@@ -130,34 +107,7 @@ fn file_arg(path: &Path) -> String {
 
 #[test]
 fn an_unknown_preset_name_exits_2_naming_it() {
+    // The message names the preset and lists the known ones.
     let dir = tempfile::tempdir().unwrap();
-    let out = seasynth()
-        .current_dir(dir.path())
-        .args(["presets", "nope"])
-        .output()
-        .expect("seasynth runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "`presets nope` must exit 2; stderr:\n{stderr}"
-    );
-    assert!(
-        out.stdout.is_empty(),
-        "`presets nope` printed on stdout: {}",
-        String::from_utf8_lossy(&out.stdout)
-    );
-    assert_eq!(
-        stderr.lines().count(),
-        1,
-        "one line on stderr, got:\n{stderr}"
-    );
-    assert!(
-        stderr.contains("`nope`"),
-        "stderr does not name the preset: {stderr}"
-    );
-    assert!(
-        stderr.contains("li-tian"),
-        "stderr does not list the known presets: {stderr}"
-    );
+    run_rejected(dir.path(), &["presets", "nope"], &["`nope`", "li-tian"]);
 }

@@ -2,9 +2,11 @@
 //! JONSWAP from Hs/Tp, TMA's depth, the plots, and bad input (exit code 2, one line, no
 //! file left behind).
 
+mod common;
+
+use common::{names_in, num, run_exit2, run_ok};
 use std::path::Path;
 
-use assert_cmd::Command;
 use serde_json::Value;
 
 const G: f64 = 9.81;
@@ -12,54 +14,23 @@ const TAU: f64 = std::f64::consts::TAU;
 /// Phillips' constant of the Pierson–Moskowitz spectrum (Mastin eq. 1).
 const PM_ALPHA: f64 = 0.0081;
 
-fn seasynth() -> Command {
-    Command::cargo_bin("seasynth").expect("the seasynth binary is built")
-}
-
 /// Runs `seasynth spectrum ARGS`, panics with its stderr unless it succeeds, returns stdout.
 fn spectrum_ok(args: &[&str]) -> String {
-    let out = seasynth()
-        .arg("spectrum")
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    assert!(
-        out.status.success(),
-        "seasynth spectrum {} failed with {:?}:\n{}",
-        args.join(" "),
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8 output")
+    let mut all = vec!["spectrum"];
+    all.extend_from_slice(args);
+    run_ok(Path::new("."), &all)
 }
 
 /// Runs `seasynth spectrum ARGS`, expects exit code 2 and nothing on stdout, returns stderr.
 fn spectrum_usage_error(args: &[&str]) -> String {
-    let out = seasynth()
-        .arg("spectrum")
-        .args(args)
-        .output()
-        .expect("seasynth runs");
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "seasynth spectrum {}: expected exit code 2, stderr:\n{stderr}",
-        args.join(" ")
-    );
-    assert!(out.stdout.is_empty(), "nothing on stdout after an error");
-    stderr
+    let mut all = vec!["spectrum"];
+    all.extend_from_slice(args);
+    run_exit2(Path::new("."), &all)
 }
 
 fn json(args: &[&str]) -> Value {
     let text = spectrum_ok(args);
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("not one JSON object ({e}):\n{text}"))
-}
-
-fn num(doc: &Value, pointer: &str) -> f64 {
-    doc.pointer(pointer)
-        .and_then(Value::as_f64)
-        .unwrap_or_else(|| panic!("no number at {pointer} in {doc}"))
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -242,16 +213,6 @@ fn png_info(path: &Path) -> (u32, u32, usize) {
     (info.width, info.height, colors.len())
 }
 
-/// The files in `dir`, sorted.
-fn files(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn plots_are_png_images_of_the_documented_sizes() {
     let dir = tempfile::tempdir().unwrap();
@@ -283,7 +244,7 @@ fn plots_are_png_images_of_the_documented_sizes() {
     assert_eq!((w, h), (600, 600));
     assert!(colors > 100, "{colors} colors: a color map");
     assert_eq!(
-        files(dir.path()),
+        names_in(dir.path()),
         ["f.png", "psi.png"],
         "no temporary file left"
     );
@@ -324,9 +285,9 @@ fn an_unwritable_plot_fails_before_any_work_and_leaves_no_file() {
     assert!(err.contains("/nonexistent"), "{err}");
     assert!(!Path::new("/nonexistent/x.png").exists());
     assert!(
-        files(dir.path()).is_empty(),
+        names_in(dir.path()).is_empty(),
         "nothing written: {:?}",
-        files(dir.path())
+        names_in(dir.path())
     );
 
     let err = spectrum_usage_error(&["--spectrum", "jonswap", "--plot", "/nonexistent/x.png"]);
@@ -334,7 +295,7 @@ fn an_unwritable_plot_fails_before_any_work_and_leaves_no_file() {
     let jpg = dir.path().join("x.jpg");
     let err = spectrum_usage_error(&["--spectrum", "jonswap", "--plot", jpg.to_str().unwrap()]);
     assert!(err.contains(".png"), "{err}");
-    assert!(files(dir.path()).is_empty());
+    assert!(names_in(dir.path()).is_empty());
 }
 
 #[test]
