@@ -133,6 +133,15 @@ pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
 /// The spectrum model of validated `params` (E|h̃0(k)|² per wavevector), and the
 /// dispersion relation waves follow (finite depth when `spectrum.depth_m` is set).
 pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)> {
+    model_from(params, sea_model(params)?)
+}
+
+/// [`spectrum_model`] given the already built [`sea_model`] of `params`.
+fn model_from(params: &Params, sea: Option<SeaModel>) -> Result<(Box<dyn Spectrum>, Dispersion)> {
+    if let Some(sea) = sea {
+        let dispersion = sea.dispersion;
+        return Ok((Box::new(sea.into_directional()?), dispersion));
+    }
     let dispersion = Dispersion::for_depth(params.spectrum.depth_m);
     Ok(match params.spectrum.model {
         SpectrumModel::Phillips => (Box::new(phillips(params)), dispersion),
@@ -143,11 +152,7 @@ pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)
             let on_grid = model.normalized_for(spec.nx, spec.ny, spec.extent_x_m, spec.extent_y_m);
             (Box::new(on_grid), dispersion)
         }
-        _ => {
-            let sea = sea_model(params)?.expect("a physical sea model");
-            let dispersion = sea.dispersion;
-            (Box::new(sea.into_directional()?), dispersion)
-        }
+        _ => unreachable!("the physical spectra have a sea model"),
     })
 }
 
@@ -165,11 +170,13 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
             if params.spectrum.model == SpectrumModel::Phillips {
                 info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
             }
-            if let Some(sea) = sea_model(params)? {
+            // The sea model is built once: its Hs and Tp for the sidecar, then the spectrum.
+            let sea = sea_model(params)?;
+            if let Some(sea) = &sea {
                 info.model_hs_m = Some(sea.freq.hs_m());
                 info.model_tp_s = Some(1.0 / sea.freq.peak_hz());
             }
-            let (model, dispersion) = spectrum_model(params)?;
+            let (model, dispersion) = model_from(params, sea)?;
             let setup = fft::SpectrumSetup {
                 spec,
                 spectrum: model.as_ref(),
