@@ -103,9 +103,15 @@ impl Grid {
     /// Statistics of the field. Sums are formed per row in f64 and added in row order,
     /// so the result does not depend on the number of threads.
     pub fn stats(&self) -> Stats {
-        let nx = self.spec.nx;
-        let rows: Vec<(f64, f32, f32)> = self
-            .data
+        Stats::of_rows(&self.data, self.spec.nx)
+    }
+}
+
+impl Stats {
+    /// Statistics of row-major samples with rows of `nx`: sums are formed per row in f64
+    /// and added in row order, so the result does not depend on the number of threads.
+    pub fn of_rows(data: &[f32], nx: usize) -> Stats {
+        let rows: Vec<(f64, f32, f32)> = data
             .par_chunks(nx)
             .map(|row| {
                 let mut s = 0.0f64;
@@ -119,10 +125,9 @@ impl Grid {
                 (s, lo, hi)
             })
             .collect();
-        let n = self.data.len() as f64;
+        let n = data.len() as f64;
         let mean = rows.iter().map(|r| r.0).sum::<f64>() / n;
-        let sq: Vec<f64> = self
-            .data
+        let sq: Vec<f64> = data
             .par_chunks(nx)
             .map(|row| {
                 row.iter()

@@ -210,7 +210,7 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
             let b = match params.blend.beta {
                 Beta::Paper => info.h0max_m.unwrap_or(0.0),
                 Beta::Matched => {
-                    let pstd = Grid::new(spec, p.clone()).stats().std_m;
+                    let pstd = crate::grid::Stats::of_rows(&p, spec.nx).std_m;
                     if pstd > 0.0 {
                         f.stats().std_m / pstd
                     } else {
