@@ -823,17 +823,22 @@ mod tests {
             // Sample spacing equal to the lattice spacing, then finer lattices.
             (GridSpec::new(64, 8, 64.0, 8.0), params(3, 1.0, true, 15)),
         ] {
-            let f = perlin_field(&spec, &p);
-            for j in 0..spec.ny {
-                for i in 0..spec.nx {
-                    let at = perlin_at(&spec, &p, spec.x_m(i), spec.y_m(j));
-                    let g = f[j * spec.nx + i];
-                    assert_eq!(
-                        g.to_bits(),
-                        at.to_bits(),
-                        "({i}, {j}): field {g} vs perlin_at {at} for {p:?}"
-                    );
-                }
+            assert_field_equals_point_values(&spec, &p);
+        }
+    }
+
+    /// `perlin_field` equals `perlin_at` at every grid point, bit for bit.
+    fn assert_field_equals_point_values(spec: &GridSpec, p: &PerlinParams) {
+        let f = perlin_field(spec, p);
+        for j in 0..spec.ny {
+            for i in 0..spec.nx {
+                let at = perlin_at(spec, p, spec.x_m(i), spec.y_m(j));
+                let g = f[j * spec.nx + i];
+                assert_eq!(
+                    g.to_bits(),
+                    at.to_bits(),
+                    "({i}, {j}): field {g} vs perlin_at {at} for {p:?}"
+                );
             }
         }
     }
@@ -852,18 +857,7 @@ mod tests {
                 params(12, 300.0, true, 24),
             ),
         ] {
-            let f = perlin_field(&spec, &p);
-            for j in 0..spec.ny {
-                for i in 0..spec.nx {
-                    let at = perlin_at(&spec, &p, spec.x_m(i), spec.y_m(j));
-                    let g = f[j * spec.nx + i];
-                    assert_eq!(
-                        g.to_bits(),
-                        at.to_bits(),
-                        "({i}, {j}): field {g} vs perlin_at {at} for {p:?}"
-                    );
-                }
-            }
+            assert_field_equals_point_values(&spec, &p);
         }
     }
 
