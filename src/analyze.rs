@@ -346,7 +346,6 @@ impl KGrid {
 /// Power per radial bin (and the target's, if any), summed in a fixed order.
 fn radial_sums(half: &HalfSpectrum, kg: &KGrid, target: Option<&Target>) -> Vec<BinAcc> {
     let ny = half.ny;
-    let neg_ky: Vec<f64> = kg.ky.iter().map(|v| -v).collect();
     let partials: Vec<Vec<BinAcc>> = half
         .data
         .par_chunks(LINES_PER_CHUNK * ny)
@@ -361,9 +360,7 @@ fn radial_sums(half: &HalfSpectrum, kg: &KGrid, target: Option<&Target>) -> Vec<
                 let w = kg.weight(n);
                 if let Some(t) = target {
                     t.spectrum
-                        .amplitude_variance_line(kx, &kg.ky, kg.dkx, kg.dky, &mut pa);
-                    t.spectrum
-                        .amplitude_variance_line(-kx, &neg_ky, kg.dkx, kg.dky, &mut pb);
+                        .amplitude_variance_pair_line(kx, &kg.ky, kg.dkx, kg.dky, &mut pa, &mut pb);
                 }
                 for (m, v) in line.iter().enumerate() {
                     if n == 0 && m == 0 {

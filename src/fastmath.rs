@@ -238,12 +238,17 @@ const TWO54: f64 = 18_014_398_509_481_984.0;
 /// `ln(±0) = −inf`, `ln(1) = +0`. Relative error ≤ 2 ulp.
 #[inline]
 pub fn ln(x: f64) -> f64 {
-    let ix = x.to_bits();
     // One unsigned comparison selects positive, normal, finite x.
-    if ix.wrapping_sub(0x0010_0000_0000_0000) >= 0x7FE0_0000_0000_0000 {
+    if ln_is_special(x) {
         return ln_special(x);
     }
-    ln_normal(ix, 0)
+    ln_normal(x.to_bits(), 0)
+}
+
+/// True where [`ln`] leaves its straight-line path (`x` not positive, normal and finite).
+#[inline(always)]
+pub(crate) fn ln_is_special(x: f64) -> bool {
+    x.to_bits().wrapping_sub(0x0010_0000_0000_0000) >= 0x7FE0_0000_0000_0000
 }
 
 /// [`ln`] of a positive, normal, finite `x`, without the range check: straight-line code

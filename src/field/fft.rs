@@ -81,7 +81,7 @@ impl SpectrumSetup<'_> {
     /// p = E|h̃0|² there.
     #[inline]
     fn polar_from(&self, p: f64, n: i64, m: i64) -> (f64, f64) {
-        if p <= 0.0 {
+        if p <= P_FLOOR_M2 {
             return (0.0, 0.0);
         }
         let (r, phi) = gaussian_polar(self.seed, n, m);
@@ -164,7 +164,6 @@ impl HalfSpectrum {
 /// Per-thread buffers of one kx line.
 pub(crate) struct LineBuffers {
     pub ky: Vec<f64>,
-    neg_ky: Vec<f64>,
     /// E|h̃0(k)|² and E|h̃0(−k)|² of the line (kernels may reuse them).
     pub pa: Vec<f64>,
     pub pb: Vec<f64>,
@@ -203,7 +202,6 @@ where
         .map_init(
             || LineBuffers {
                 ky: ky.clone(),
-                neg_ky: ky.iter().map(|v| -v).collect(),
                 pa: vec![0.0; ny],
                 pb: vec![0.0; ny],
                 ra: vec![0.0; ny],
@@ -220,12 +218,14 @@ where
             |buf, (n, line)| {
                 let n = n as i64;
                 let kx = setup.wavevector(n, 0).0;
-                setup
-                    .spectrum
-                    .amplitude_variance_line(kx, &buf.ky, dkx, dky, &mut buf.pa);
-                setup
-                    .spectrum
-                    .amplitude_variance_line(-kx, &buf.neg_ky, dkx, dky, &mut buf.pb);
+                setup.spectrum.amplitude_variance_pair_line(
+                    kx,
+                    &buf.ky,
+                    dkx,
+                    dky,
+                    &mut buf.pa,
+                    &mut buf.pb,
+                );
                 kernel(n, kx, buf, line)
             },
         )
@@ -274,11 +274,16 @@ pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
     })
 }
 
-/// ρ = √(p/2)·r and φ of a draw (r, φ) for E|h̃0|² = p; (0, 0) where p ≤ 0, as
-/// [`SpectrumSetup::polar_from`].
+/// Amplitude variances at or below this (amplitudes of ~1e-30 m) are left out: they
+/// change no height, and as f32 they would be subnormal numbers, which slow the
+/// transform's arithmetic many times over.
+pub const P_FLOOR_M2: f64 = 1e-60;
+
+/// ρ = √(p/2)·r and φ of a draw (r, φ) for E|h̃0|² = p; (0, 0) where p ≤ [`P_FLOOR_M2`],
+/// as [`SpectrumSetup::polar_from`].
 #[inline(always)]
 fn scale_draw(p: f64, r: f64, phi: f64) -> (f64, f64) {
-    if p <= 0.0 {
+    if p <= P_FLOOR_M2 {
         (0.0, 0.0)
     } else {
         ((p * 0.5).sqrt() * r, phi)

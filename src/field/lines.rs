@@ -37,9 +37,46 @@ pub fn sin_cos_line(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     sin_cos_line_on(Isa::detect(), x, s, c);
 }
 
+/// Defines `fn NAME(args) -> R` whose body is compiled twice, for the target's baseline
+/// and (on x86-64) for AVX2, the copy chosen at run time: for whole-line loops that the
+/// compiler vectorizes. The body must give the same bits on both (IEEE basic operations
+/// and `fastmath`'s cores only, no fused multiply–add).
+macro_rules! multiversion {
+    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
+        $(#[$meta])*
+        #[allow(clippy::too_many_arguments)]
+        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+            #[inline(always)]
+            #[allow(clippy::too_many_arguments)]
+            fn mv_body($($arg: $ty),*) $(-> $ret)? $body
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments)]
+            fn mv_plain($($arg: $ty),*) $(-> $ret)? {
+                mv_body($($arg),*)
+            }
+            /// # Safety
+            /// The processor must have AVX2.
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2")]
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments)]
+            unsafe fn mv_avx2($($arg: $ty),*) $(-> $ret)? {
+                mv_body($($arg),*)
+            }
+            match $crate::field::lines::Isa::detect() {
+                $crate::field::lines::Isa::Plain => mv_plain($($arg),*),
+                // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
+                #[cfg(target_arch = "x86_64")]
+                $crate::field::lines::Isa::Avx2 => unsafe { mv_avx2($($arg),*) },
+            }
+        }
+    };
+}
+pub(crate) use multiversion;
+
 /// The instruction sets the kernels are compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Isa {
+pub(crate) enum Isa {
     /// The compilation target's baseline (SSE2 on x86-64).
     Plain,
     /// x86-64 with AVX2.
@@ -50,7 +87,7 @@ enum Isa {
 impl Isa {
     /// The best instruction set of this processor (detected once).
     #[inline]
-    fn detect() -> Isa {
+    pub(crate) fn detect() -> Isa {
         #[cfg(target_arch = "x86_64")]
         {
             use std::sync::atomic::{AtomicU8, Ordering};
@@ -713,6 +750,51 @@ unsafe fn exp_run_avx2(x: &[f64], e: &mut [f64]) -> bool {
     exp_run_body(x, e)
 }
 
+/// o[i] = fastmath::ln(x[i]) bit for bit: a branch-free pass that vectorizes, then the
+/// scalar function for lanes that are not positive, normal and finite.
+pub fn ln_line(x: &[f64], o: &mut [f64]) {
+    assert_eq!(x.len(), o.len(), "ln_line: x and o differ in length");
+    let special = match Isa::detect() {
+        Isa::Plain => ln_run_plain(x, o),
+        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx2 => unsafe { ln_run_avx2(x, o) },
+    };
+    if special {
+        for (&x, o) in x.iter().zip(o.iter_mut()) {
+            if fastmath::ln_is_special(x) {
+                *o = fastmath::ln(x);
+            }
+        }
+    }
+}
+
+#[inline(always)]
+fn ln_run_body(x: &[f64], o: &mut [f64]) -> bool {
+    let mut special = false;
+    for (&x, o) in x.iter().zip(o.iter_mut()) {
+        special |= fastmath::ln_is_special(x);
+        *o = fastmath::ln_positive_normal(x);
+    }
+    special
+}
+
+#[inline(never)]
+fn ln_run_plain(x: &[f64], o: &mut [f64]) -> bool {
+    ln_run_body(x, o)
+}
+
+/// [`ln_run_plain`] with AVX2.
+///
+/// # Safety
+/// The processor must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline(never)]
+unsafe fn ln_run_avx2(x: &[f64], o: &mut [f64]) -> bool {
+    ln_run_body(x, o)
+}
+
 #[cfg(test)]
 mod exp_line_tests {
     use super::*;
@@ -738,6 +820,33 @@ mod exp_line_tests {
             assert!(
                 e.to_bits() == want.to_bits() || (e.is_nan() && want.is_nan()),
                 "lane {i}: exp({x}) = {e} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn ln_line_equals_the_scalar_ln_bit_for_bit() {
+        let mut x: Vec<f64> = (0..5000).map(|i| 1.37f64.powi(i - 2500)).collect();
+        x.extend((0..2000).map(|i| 0.5 + i as f64 * 1e-3));
+        x.extend([
+            0.0,
+            -0.0,
+            -1.0,
+            f64::MIN_POSITIVE,
+            f64::MIN_POSITIVE / 3.0,
+            f64::MAX,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1.0,
+        ]);
+        let mut o = vec![0.0; x.len()];
+        ln_line(&x, &mut o);
+        for (i, (&x, &o)) in x.iter().zip(&o).enumerate() {
+            let want = fastmath::ln(x);
+            assert!(
+                o.to_bits() == want.to_bits() || (o.is_nan() && want.is_nan()),
+                "lane {i}: ln({x}) = {o} vs {want}"
             );
         }
     }

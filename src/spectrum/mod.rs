@@ -39,4 +39,22 @@ pub trait Spectrum: Send + Sync {
             *o = self.amplitude_variance(kx, y, dkx, dky);
         }
     }
+
+    /// The line (kx, ky[i]) into `pa` and its mirror (−kx, −ky[i]) into `pb`: the two
+    /// amplitude variances every h̃(k, t) needs. Equal bit for bit to
+    /// [`amplitude_variance_line`](Self::amplitude_variance_line) of each; models
+    /// override it to share the work that depends on |k| only.
+    fn amplitude_variance_pair_line(
+        &self,
+        kx: f64,
+        ky: &[f64],
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+    ) {
+        let neg: Vec<f64> = ky.iter().map(|v| -v).collect();
+        self.amplitude_variance_line(kx, ky, dkx, dky, pa);
+        self.amplitude_variance_line(-kx, &neg, dkx, dky, pb);
+    }
 }

@@ -86,6 +86,21 @@ impl Spectrum for Phillips {
             *o = if k2 == 0.0 { 0.0 } else { v };
         }
     }
+
+    /// P(−k) = P(k) exactly: k² is the same and cos changes sign only, so its square is
+    /// the same number.
+    fn amplitude_variance_pair_line(
+        &self,
+        kx: f64,
+        ky: &[f64],
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+    ) {
+        self.amplitude_variance_line(kx, ky, dkx, dky, pa);
+        pb.copy_from_slice(pa);
+    }
 }
 
 #[cfg(test)]
@@ -125,6 +140,24 @@ mod tests {
                         "l={l} kx={kx} ky[{i}]={y}: {o} vs {want}"
                     );
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn the_mirror_line_equals_the_single_values_bit_for_bit() {
+        let p = Phillips::new(3e-7, 13.0, 0.9, 0.7);
+        let ky: Vec<f64> = (-40..40).map(|m| m as f64 * 0.0123).collect();
+        let (mut pa, mut pb) = (vec![0.0; ky.len()], vec![0.0; ky.len()]);
+        for kx in [0.0, 0.0123, -0.5, 3.0] {
+            p.amplitude_variance_pair_line(kx, &ky, 0.0, 0.0, &mut pa, &mut pb);
+            for (i, &y) in ky.iter().enumerate() {
+                assert_eq!(pa[i].to_bits(), p.value(kx, y).to_bits(), "kx={kx} ky={y}");
+                assert_eq!(
+                    pb[i].to_bits(),
+                    p.value(-kx, -y).to_bits(),
+                    "-kx={kx} -ky={y}"
+                );
             }
         }
     }

@@ -1,0 +1,368 @@
+//! Midpoint values of a whole line of wavevectors, in passes the compiler vectorizes.
+//!
+//! A 4096² spectrum has 16.7 million amplitude variances, nearly all of them far from the
+//! peak, where the cell rule is the midpoint: Ψ = a(|k|) · m(θ) · cos^{2s}(θ/2). The passes
+//! below compute the same operations as [`Kernel::radial`] and [`Kernel::angular`], in the
+//! same order, on arrays: the radial part once per distinct k² (k and −k share it, and
+//! so do ky and −ky of a line in FFT order), then both half-planes' directional parts.
+//! Each pass is compiled for the baseline and for AVX2 (`lines::multiversion`), uses
+//! `fastmath`'s branch-free cores, and flags lanes outside their fast range, which the
+//! scalar functions then redo; so every value equals the scalar one bit for bit.
+
+use super::{
+    C_HIGH, C_LOW, FrequencySpectrum, G, Kernel, PI, POWER_EXPONENT_MIN, Radial, ShapeK,
+    SpreadKind, U_MAX, kitaigorodskii, tanh,
+};
+use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
+use crate::field::lines::multiversion;
+
+/// Largest γ-exponent argument the fast path takes (the scalar path uses exp(−a) up to
+/// 700; the lanes in between are redone by it).
+const GAMMA_ARG_FAST: f64 = 689.0;
+
+/// The radial parts of a line, as arrays.
+#[derive(Debug, Default)]
+pub(super) struct RadialLine {
+    pub inv_k: Vec<f64>,
+    pub a: Vec<f64>,
+    pub s: Vec<f64>,
+    pub beta: Vec<f64>,
+}
+
+impl RadialLine {
+    /// Length n (the contents are overwritten by every user).
+    fn resize(&mut self, n: usize) {
+        for v in [&mut self.inv_k, &mut self.a, &mut self.s, &mut self.beta] {
+            v.resize(n, 0.0);
+        }
+    }
+
+    fn set(&mut self, i: usize, r: Radial) {
+        self.inv_k[i] = r.inv_k;
+        self.a[i] = r.a;
+        self.s[i] = r.s;
+        self.beta[i] = r.beta;
+    }
+
+    fn get(&self, i: usize) -> Radial {
+        Radial {
+            inv_k: self.inv_k[i],
+            a: self.a[i],
+            s: self.s[i],
+            beta: self.beta[i],
+        }
+    }
+
+    /// Entries `0..=h−1` as computed, then entry `j ≥ h` from entry `n − j`.
+    fn mirror_into(&self, n: usize, out: &mut RadialLine) {
+        out.resize(n);
+        let h = self.a.len();
+        for (src, dst) in [
+            (&self.inv_k, &mut out.inv_k),
+            (&self.a, &mut out.a),
+            (&self.s, &mut out.s),
+            (&self.beta, &mut out.beta),
+        ] {
+            dst[..h].copy_from_slice(src);
+            for j in h..n {
+                dst[j] = src[n - j];
+            }
+        }
+    }
+}
+
+multiversion! {
+    /// The radial part before the spreading table: 1/k, the amplitude factor
+    /// A(2π)⁴·c_g/(kω⁵)·Φ (into `a`), the exponent −5/4 u + r ln γ (into `e`) and the
+    /// table's argument x (into `x`). True if a lane needs the scalar function.
+    fn radial_first(
+        depth: f64,
+        sh: &ShapeK,
+        plain: bool,
+        k2: &[f64],
+        inv_k: &mut [f64],
+        a: &mut [f64],
+        e: &mut [f64],
+        x: &mut [f64],
+    ) -> bool {
+        let deep = depth == f64::INFINITY;
+        let peaked = sh.ln_gamma != 0.0;
+        let tma = sh.tma_h != f64::INFINITY;
+        let mut special = false;
+        // One lane from ω², c_g/(kω⁵), k and the depth factor Φ(q): (1/k, amplitude factor,
+        // exponent, x, needs the scalar function).
+        #[inline(always)]
+        fn lane(
+            sh: &ShapeK,
+            peaked: bool,
+            plain: bool,
+            k2: f64,
+            w2: f64,
+            geo: f64,
+            k: f64,
+            phi_of: impl Fn(f64) -> f64,
+        ) -> (f64, f64, f64, f64, bool) {
+            let v = w2 * w2 * sh.inv_wp4;
+            let u = 1.0 / v;
+            let q = v.sqrt().sqrt();
+            let d = q - 1.0;
+            let ga = d * d * if d <= 0.0 { C_LOW } else { C_HIGH };
+            // ln γ · exp(−a) for a < 700 (the scalar rule), by a 0/1 factor so that nothing
+            // branches (+0 is exact where it is absent; the fast range is redone beyond).
+            let g = exp_fast(-ga.min(GAMMA_ARG_FAST));
+            let on = (peaked & (ga < 700.0)) as u8 as f64;
+            let add = on * (sh.ln_gamma * g);
+            let x = if plain {
+                0.0
+            } else {
+                0.25 * ln_positive_normal(v) - sh.x_shift
+            };
+            let special = (peaked & (ga >= GAMMA_ARG_FAST) & (ga < 700.0))
+                | (k2 <= 0.0)
+                | (k2 == f64::INFINITY)
+                | (u > U_MAX)
+                | ln_is_special(v);
+            (1.0 / k, sh.coef * geo * phi_of(q), -1.25 * u + add, x, special)
+        }
+        let n = k2.len();
+        let (inv_k, a, e, x) = (&mut inv_k[..n], &mut a[..n], &mut e[..n], &mut x[..n]);
+        if deep && !tma {
+            let mut flags = 0u64;
+            for i in 0..n {
+                let kk2 = k2[i];
+                let k = kk2.sqrt();
+                let geo = 0.5 / (G * G * kk2 * kk2);
+                let w2 = G * k;
+                let v = w2 * w2 * sh.inv_wp4;
+                let u = 1.0 / v;
+                let q = v.sqrt().sqrt();
+                let d = q - 1.0;
+                let ga = d * d * if d <= 0.0 { C_LOW } else { C_HIGH };
+                let g = exp_fast(-ga.min(GAMMA_ARG_FAST));
+                let on = (peaked & (ga < 700.0)) as u8 as f64;
+                inv_k[i] = 1.0 / k;
+                a[i] = sh.coef * geo;
+                e[i] = -1.25 * u + on * (sh.ln_gamma * g);
+                let lv = ln_positive_normal(v);
+                x[i] = if plain { 0.0 } else { 0.25 * lv - sh.x_shift };
+                flags |= ((peaked & (ga >= GAMMA_ARG_FAST) & (ga < 700.0))
+                    | (kk2 <= 0.0)
+                    | (kk2 == f64::INFINITY)
+                    | (u > U_MAX)
+                    | ln_is_special(v)) as u64;
+            }
+            special |= flags != 0;
+        } else {
+            let phi_of = |q: f64| if tma { kitaigorodskii(q * sh.tma_h) } else { 1.0 };
+            for i in 0..n {
+                let k = k2[i].sqrt();
+                let (w2, geo) = if deep {
+                    (G * k, 0.5 / (G * G * k2[i] * k2[i]))
+                } else {
+                    let kd = k * depth;
+                    let t = tanh(kd);
+                    let w2 = G * k * t;
+                    (w2, G * (t + kd * (1.0 - t * t)) / (2.0 * k * w2 * w2 * w2))
+                };
+                let sp;
+                (inv_k[i], a[i], e[i], x[i], sp) =
+                    lane(sh, peaked, plain, k2[i], w2, geo, k, phi_of);
+                special |= sp;
+            }
+        }
+        special
+    }
+}
+
+multiversion! {
+    /// a ← a·exp(e − ln Z) (·1/π for plain cos²), with the table's [s, ln Z, β] at x.
+    /// True if a lane needs the scalar function.
+    fn radial_second(
+        kern: &Kernel,
+        plain: bool,
+        x: &[f64],
+        e: &[f64],
+        a: &mut [f64],
+        s: &mut [f64],
+        ln_z: &mut [f64],
+        beta: &mut [f64],
+    ) -> bool {
+        let n = x.len();
+        let (e, a, s, ln_z, beta) = (&e[..n], &mut a[..n], &mut s[..n], &mut ln_z[..n], &mut beta[..n]);
+        for i in 0..n {
+            [s[i], ln_z[i], beta[i]] = if plain {
+                [0.0, 0.0, 0.0]
+            } else {
+                kern.table.eval(x[i])
+            };
+        }
+        let mut special = false;
+        for i in 0..n {
+            let arg = e[i] - ln_z[i];
+            special |= exp_is_special(arg);
+            let aa = a[i] * exp_fast(arg);
+            a[i] = if plain { aa * (1.0 / PI) } else { aa };
+        }
+        special
+    }
+}
+
+multiversion! {
+    /// ½·Ψ·dkx·dky at (kx, ky[j]) into `pa` and at (−kx, −ky[j]) into `pb`, for the cos^{2s}
+    /// family, plain cos² and cos² with swell. True if a lane needs the scalar function.
+    fn angular_pair(
+        wx: f64,
+        wy: f64,
+        kind: SpreadKind,
+        kx: f64,
+        ky: &[f64],
+        r: &RadialLine,
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+    ) -> bool {
+        let cos2 = kind != SpreadKind::Family;
+        let n = ky.len();
+        let (inv_k, ra, rs) = (&r.inv_k[..n], &r.a[..n], &r.s[..n]);
+        let (pa, pb) = (&mut pa[..n], &mut pb[..n]);
+        let mut special = false;
+        for j in 0..n {
+            let y = ky[j];
+            let ca = (kx * wx + y * wy) * inv_k[j];
+            let cb = (-kx * wx + -y * wy) * inv_k[j];
+            let (a, s) = (ra[j], rs[j]);
+            let (ma, mb) = if cos2 { (a * (ca * ca), a * (cb * cb)) } else { (a, a) };
+            let la = (0.5 + 0.5 * ca).max(f64::MIN_POSITIVE);
+            let lb = (0.5 + 0.5 * cb).max(f64::MIN_POSITIVE);
+            let ea = s * ln_positive_normal(la);
+            let eb = s * ln_positive_normal(lb);
+            let xa = exp_fast(ea.max(POWER_EXPONENT_MIN));
+            let xb = exp_fast(eb.max(POWER_EXPONENT_MIN));
+            special |= ln_is_special(la)
+                | ln_is_special(lb)
+                | exp_is_special(ea.max(POWER_EXPONENT_MIN))
+                | exp_is_special(eb.max(POWER_EXPONENT_MIN));
+            let value = |m: f64, x: f64, e: f64| {
+                if a == 0.0 {
+                    0.0
+                } else if s == 0.0 {
+                    m
+                } else if e < POWER_EXPONENT_MIN {
+                    0.0
+                } else {
+                    m * x
+                }
+            };
+            // The bits of `0.5 * (psi * dkx * dky)`: the products in that order.
+            pa[j] = 0.5 * (value(ma, xa, ea) * dkx * dky);
+            pb[j] = 0.5 * (value(mb, xb, eb) * dkx * dky);
+        }
+        special
+    }
+}
+
+/// Scratch of one thread.
+#[derive(Debug, Default)]
+pub(super) struct LineScratch {
+    k2: Vec<f64>,
+    e: Vec<f64>,
+    x: Vec<f64>,
+    ln_z: Vec<f64>,
+    half: RadialLine,
+    full: RadialLine,
+}
+
+impl Kernel {
+    /// The radial parts of every k² in `k2s` into `out`, bit for bit those of
+    /// [`Kernel::radial`].
+    fn radial_line(
+        &self,
+        k2s: &[f64],
+        freq: &dyn FrequencySpectrum,
+        e: &mut Vec<f64>,
+        x: &mut Vec<f64>,
+        ln_z: &mut Vec<f64>,
+        out: &mut RadialLine,
+    ) {
+        let n = k2s.len();
+        out.resize(n);
+        let Some(sh) = &self.shape else {
+            for (i, &k2) in k2s.iter().enumerate() {
+                out.set(i, self.radial(k2, freq));
+            }
+            return;
+        };
+        let plain = self.kind == SpreadKind::Cos2Plain;
+        e.resize(n, 0.0);
+        x.resize(n, 0.0);
+        let first = radial_first(self.depth, sh, plain, k2s, &mut out.inv_k, &mut out.a, e, x);
+        ln_z.resize(n, 0.0);
+        let second = radial_second(
+            self,
+            plain,
+            x,
+            e,
+            &mut out.a,
+            &mut out.s,
+            ln_z,
+            &mut out.beta,
+        );
+        if first || second {
+            // Lanes outside the fast ranges (k² = 0, u beyond the floor, huge γ
+            // arguments): the scalar function for those; it is the reference.
+            for (i, &k2) in k2s.iter().enumerate() {
+                out.set(i, self.radial(k2, freq));
+            }
+        }
+    }
+
+    /// ½·dkx·dky·Ψ at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]` for every
+    /// j: the midpoint amplitude variances, bit for bit `0.5 * (angular(..) * dkx * dky)`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn midpoint_pair_line(
+        &self,
+        freq: &dyn FrequencySpectrum,
+        kx: f64,
+        ky: &[f64],
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+        scratch: &mut LineScratch,
+    ) {
+        let n = ky.len();
+        let LineScratch {
+            k2,
+            e,
+            x,
+            ln_z,
+            half,
+            full,
+        } = scratch;
+        // FFT order: ky[n − j] = −ky[j], so entries j and n − j share k².
+        let mirrored = n >= 2 && (1..n.div_ceil(2)).all(|j| ky[n - j] == -ky[j]);
+        let unique = if mirrored { n / 2 + 1 } else { n };
+        k2.clear();
+        k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
+        let radial = if mirrored {
+            self.radial_line(k2, freq, e, x, ln_z, half);
+            half.mirror_into(n, full);
+            &*full
+        } else {
+            self.radial_line(k2, freq, e, x, ln_z, full);
+            &*full
+        };
+        let fast = match self.kind {
+            SpreadKind::DonelanBanner => false,
+            kind => !angular_pair(self.wx, self.wy, kind, kx, ky, radial, dkx, dky, pa, pb),
+        };
+        if !fast {
+            for j in 0..n {
+                let r = radial.get(j);
+                pa[j] = 0.5 * (self.angular(&r, kx, ky[j]) * dkx * dky);
+                pb[j] = 0.5 * (self.angular(&r, -kx, -ky[j]) * dkx * dky);
+            }
+        }
+    }
+}
