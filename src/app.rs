@@ -7,10 +7,15 @@ use anyhow::{Context, Result};
 
 use crate::cli::{Cli, Command, FieldArgs, GenerateArgs};
 use crate::config::layers::{self, Assignment};
-use crate::config::{Params, presets};
+use crate::config::{Method, Params, presets};
 use crate::error::Error;
-use crate::export::sidecar::{self, FileEntry, MappingInfo, Sidecar};
-use crate::export::{Format, HeightMapping, Output, Staged};
+use crate::export::maps::{self, MapContext, MapKind};
+use crate::export::mesh;
+use crate::export::options::ExportOptions;
+use crate::export::raw::R16Encoding;
+use crate::export::sidecar::{self, ExrInfo, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
+use crate::export::tiles::{self, TileIndex, TileSet};
+use crate::export::{self, FieldOut, Format, HeightMapping, Output, Plan, Staged};
 use crate::field;
 
 /// Runs one command.
@@ -18,9 +23,11 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Generate(args) => generate(*args),
         Command::Presets { name } => list_presets(name.as_deref()),
+        Command::Animate(args) => crate::animate::run(*args),
         Command::Analyze(args) => crate::analyze::run(args),
         Command::Bench(args) => crate::bench::run(args),
         Command::Spectrum(args) => crate::spectrum_cmd::run(args),
+        Command::Render(args) => crate::render::command::run(*args),
     }
 }
 
@@ -71,6 +78,7 @@ fn default_stem(preset: Option<&str>) -> String {
 fn generate(args: GenerateArgs) -> Result<()> {
     set_threads(args.threads)?;
     let params = resolve_params(&args.field)?;
+    let options = ExportOptions::from_args(&args.export)?;
     let paths = if args.outputs.is_empty() {
         std::fs::create_dir_all("out").context("cannot create the folder out/")?;
         let stem = default_stem(args.field.preset.as_deref());
@@ -81,6 +89,44 @@ fn generate(args: GenerateArgs) -> Result<()> {
     } else {
         args.outputs.clone()
     };
+    let spec = params.grid_spec();
+    let periodic = params.is_periodic();
+    for (i, p) in paths.iter().enumerate() {
+        if paths[..i].contains(p) {
+            return Err(Error::Output {
+                path: p.clone(),
+                message: "given twice".into(),
+            }
+            .into());
+        }
+    }
+    // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
+    // from the same computed state as the height outputs; they are staged now too.
+    let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
+    let mut height_paths = Vec::new();
+    for p in &paths {
+        if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
+            staged_maps.push((Staged::create(p)?, None));
+            continue;
+        }
+        match MapKind::from_path(p) {
+            Ok(Some(kind)) => staged_maps.push((Staged::create(p)?, Some(kind))),
+            Ok(None) => height_paths.push(p.clone()),
+            Err(message) => {
+                return Err(Error::Output {
+                    path: p.clone(),
+                    message,
+                }
+                .into());
+            }
+        }
+    }
+    let paths = height_paths;
+    let formats = paths
+        .iter()
+        .map(|p| Format::from_path(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    options.check(&formats, periodic)?;
     // Stage every file before computing: a bad path fails now, not after the work.
     let mut outputs = Vec::new();
     for (i, p) in paths.iter().enumerate() {
@@ -91,37 +137,65 @@ fn generate(args: GenerateArgs) -> Result<()> {
             }
             .into());
         }
-        outputs.push(Output::prepare(p)?);
+        outputs.push(Output::plan(p, &options, &spec, periodic)?);
     }
-    let mut sidecars: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();
+    let mut stems: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();
     for o in &outputs {
-        sidecars
-            .entry(sidecar::path_for(&o.staged.path))
-            .or_default()
-            .push(o);
+        stems.entry(sidecar::path_for(&o.path)).or_default().push(o);
     }
-    for side in sidecars.keys() {
-        if paths.contains(side) {
+    // Every file that will be written, to refuse one written twice (an output named like
+    // the sidecar or the tile index of another).
+    let mut written: Vec<(PathBuf, String)> = Vec::new();
+    for o in &outputs {
+        for f in &o.files {
+            written.push((
+                f.path.clone(),
+                format!("an output of -o {}", o.path.display()),
+            ));
+        }
+    }
+    for (side, outs) in &stems {
+        let of = outs[0].path.display();
+        written.push((side.clone(), format!("the sidecar of {of}")));
+        if outs.iter().any(|o| o.is_tiled()) {
+            written.push((tiles::index_path(side), format!("the tile index of {of}")));
+        }
+    }
+    for (i, (p, what)) in written.iter().enumerate() {
+        if let Some((_, first)) = written[..i].iter().find(|(q, _)| q == p) {
             return Err(Error::Output {
-                path: side.clone(),
-                message: "is the sidecar of another output".into(),
+                path: p.clone(),
+                message: format!("would be written twice, as {first} and as {what}"),
             }
             .into());
         }
     }
-    let mut staged_sidecars = Vec::new();
-    for (side, outs) in &sidecars {
-        let files = outs
-            .iter()
-            .map(|o| FileEntry {
-                file: file_name(&o.staged.path),
-                format: o.format,
-            })
-            .collect::<Vec<_>>();
-        staged_sidecars.push((Staged::create(side)?, files));
+    let mut staged_stems = Vec::new();
+    for (side, outs) in &stems {
+        let index = match outs.iter().any(|o| o.is_tiled()) {
+            true => Some(Staged::create(&tiles::index_path(side))?),
+            false => None,
+        };
+        staged_stems.push((Staged::create(side)?, index, outs));
     }
 
-    let synthesis = field::synthesize(&params)?;
+    let kinds: Vec<MapKind> = staged_maps.iter().filter_map(|(_, k)| *k).collect();
+    let mut extras = maps::extras_for(&kinds);
+    // Meshes take exact spectral slopes where the field is one spectrum and not resampled.
+    let exact_slopes = matches!(params.method, Method::Fft | Method::FilteredNoise)
+        && params.motion.choppiness == 0.0;
+    let meshes = outputs.iter().any(|o| o.format.is_mesh());
+    extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
+    let synthesis = field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
+    let mesh_slopes = synthesis
+        .surface
+        .slopes
+        .as_ref()
+        .filter(|_| meshes && exact_slopes)
+        .map(|[x, y]| mesh::Slopes {
+            dhdx: x.clone(),
+            dhdy: y.clone(),
+        });
     let stats = synthesis.grid.stats();
     let (mapping, source) = match params.output.height_range {
         Some(r) => (
@@ -140,22 +214,41 @@ fn generate(args: GenerateArgs) -> Result<()> {
         ),
     };
     let grid = &synthesis.grid;
-    let has_png = outputs.iter().any(|o| o.format == Format::Png16);
-    let results: Vec<Result<(), Error>> = {
-        use rayon::prelude::*;
-        outputs
-            .into_par_iter()
-            .map(|o| o.write(grid, &mapping))
-            .collect()
-    };
-    for r in results {
-        r?;
-    }
-    for (staged, files) in staged_sidecars {
+
+    // The sidecars and tile indexes describe the outputs' layouts: built before the
+    // outputs are written (and consumed), saved after them.
+    let mut docs = Vec::new();
+    for (staged, index, outs) in staged_stems {
         let mut doc = Sidecar::new(&params, &synthesis.info, stats);
-        let png_here = files.iter().any(|f| f.format == Format::Png16);
-        doc.files = files;
-        if png_here {
+        let mut uses_mapping = false;
+        let mut sets = Vec::new();
+        for o in outs.iter() {
+            for f in &o.files {
+                doc.files.push(FileEntry {
+                    file: file_name(&f.path),
+                    format: o.format,
+                });
+            }
+            match (&o.plan, o.format) {
+                (Plan::Mesh(layout, _), _) => doc.mesh = Some(layout.info()),
+                (Plan::Raw(layout), format) => {
+                    let r16 = (format == Format::R16)
+                        .then(|| export::r16_encoding(layout.engine, &mapping));
+                    uses_mapping |= matches!(r16, Some(R16Encoding::Mapping(_)));
+                    // `.r16` and `.r32` of one stem share the layout: one record of both.
+                    let has = |f: Format| outs.iter().any(|o| o.format == f);
+                    if format == Format::R16 || !has(Format::R16) {
+                        doc.raw = Some(layout.info(&spec, r16, has(Format::R32)));
+                    }
+                }
+                (Plan::Image, Format::Png16) => uses_mapping = true,
+                (Plan::Image, Format::Exr) => doc.exr = Some(ExrInfo::default()),
+                (Plan::Image, Format::Tiff32) => doc.geotiff = Some(GeoTiffInfo::new(&spec)),
+                (Plan::Image, _) => {}
+            }
+            sets.extend(TileSet::of(o, &spec).filter(|_| o.is_tiled()));
+        }
+        if uses_mapping {
             doc.mapping = Some(MappingInfo {
                 range: mapping,
                 step_m: mapping.step_m(),
@@ -163,13 +256,83 @@ fn generate(args: GenerateArgs) -> Result<()> {
                 source,
             });
         }
+        let index = index.map(|index_file| {
+            doc.tiles_index = Some(file_name(&index_file.path));
+            (index_file, TileIndex::new(&staged.path, sets))
+        });
+        docs.push((staged, doc, index));
+    }
+
+    let [nx, ny] = params.grid.size.0;
+    let about = format!(
+        "{} field {nx}x{ny} over {} x {} m, wind {} m/s toward {} deg, seed {}, time {} s\n\
+         params {}",
+        params.method.name(),
+        params.grid.extent_m.0[0],
+        params.grid.extent_m.0[1],
+        params.wind.speed_mps,
+        params.wind.direction_deg,
+        params.seed,
+        params.time_s,
+        serde_json::to_string(&params).context("cannot describe the parameters")?
+    );
+    let field_out = FieldOut {
+        grid,
+        mapping: &mapping,
+        slopes: mesh_slopes.as_ref(),
+        about: &about,
+    };
+    let has_png = outputs.iter().any(|o| o.format == Format::Png16);
+    let results: Vec<Result<(), Error>> = {
+        use rayon::prelude::*;
+        outputs
+            .into_par_iter()
+            .map(|o| o.write(&field_out))
+            .collect()
+    };
+    for r in results {
+        r?;
+    }
+    let map_paths: Vec<PathBuf> = staged_maps.iter().map(|(s, _)| s.path.clone()).collect();
+    for (staged, kind) in staged_maps {
+        match kind {
+            Some(kind) => {
+                let cx = MapContext {
+                    params: &params,
+                    synthesis: &synthesis,
+                };
+                maps::write_map(kind, staged, &cx)?;
+            }
+            None => {
+                let opts = crate::render::RenderOptions::preview(
+                    grid,
+                    params.wind.direction_deg.to_radians(),
+                    periodic,
+                );
+                let slopes = synthesis
+                    .surface
+                    .slopes
+                    .as_ref()
+                    .filter(|_| exact_slopes)
+                    .map(|[x, y]| (&x[..], &y[..]));
+                let img = crate::render::render(grid, slopes, periodic, &opts)?;
+                export::rgb8::write(staged, &img.rgb, (img.width, img.height))?;
+            }
+        }
+    }
+    for (staged, doc, index) in docs {
+        if let Some((staged, index)) = index {
+            staged.write_with(|w| {
+                serde_json::to_writer_pretty(&mut *w, &index)?;
+                std::io::Write::write_all(w, b"\n")
+            })?;
+        }
         staged.write_with(|w| {
             serde_json::to_writer_pretty(&mut *w, &doc)?;
             std::io::Write::write_all(w, b"\n")
         })?;
     }
     if !args.quiet {
-        let [nx, ny] = params.grid.size.0;
         eprintln!(
             "{} {nx}×{ny} over {}×{} m: std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
             params.method.name(),
@@ -180,7 +343,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
             stats.min_m,
             stats.max_m
         );
-        for p in &paths {
+        for p in paths.iter().chain(&map_paths) {
             eprintln!("wrote {}", p.display());
         }
         if has_png {

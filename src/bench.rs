@@ -12,7 +12,7 @@ use rustfft::num_complex::Complex32;
 
 use crate::cli::BenchArgs;
 use crate::config::Params;
-use crate::export::{HeightMapping, Output};
+use crate::export::{FieldOut, HeightMapping, Output};
 use crate::field::{self, fft, hybrid, perlin, weight};
 use crate::grid::GridSpec;
 use crate::rng::{Stream, sub_seed};
@@ -64,6 +64,29 @@ fn bare_fft(nx: usize, ny: usize, repeats: usize) -> Duration {
     })
 }
 
+/// E|h̃0(±k)|² of every wavevector of the half plane (the spectrum alone, without the
+/// random draws): the sum, so nothing is optimized away.
+fn amplitude_variances(setup: &fft::SpectrumSetup) -> f64 {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    let (dkx, dky) = setup.dk();
+    let ky: Vec<f64> = (0..ny)
+        .map(|m| setup.wavevector(0, fft::signed_index(m, ny)).1)
+        .collect();
+    (0..nx / 2 + 1)
+        .into_par_iter()
+        .map_init(
+            || (vec![0.0; ny], vec![0.0; ny]),
+            |(pa, pb), n| {
+                let kx = setup.wavevector(n as i64, 0).0;
+                setup
+                    .spectrum
+                    .amplitude_variance_pair_line(kx, &ky, dkx, dky, pa, pb);
+                pa.iter().sum::<f64>() + pb.iter().sum::<f64>()
+            },
+        )
+        .sum()
+}
+
 pub fn run(args: BenchArgs) -> Result<()> {
     crate::app::set_threads(args.threads)?;
     std::fs::create_dir_all(&args.dir)
@@ -89,6 +112,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             dispersion: Dispersion::Deep,
             seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
             time_s: 0.0,
+            loop_period_s: None,
         };
         let bare = bare_fft(n, n, repeats);
         let mut rows: Vec<(&str, Duration)> = Vec::new();
@@ -124,6 +148,18 @@ pub fn run(args: BenchArgs) -> Result<()> {
         rows.push((
             "spectrum PM×Hasselmann, 15 m/s",
             time(repeats, || fft::synthesize_spectrum(&sea_setup)),
+        ));
+        rows.push((
+            "  of which: P(k) Phillips",
+            time(repeats, || amplitude_variances(&setup)),
+        ));
+        rows.push((
+            "  of which: P(k) PM×Hasselmann",
+            time(repeats, || amplitude_variances(&sea_setup)),
+        ));
+        rows.push((
+            "  of which: PM×Hasselmann model",
+            time(repeats, || field::spectrum_model(&sea_params)),
         ));
         let plan = fft::InverseFft2::new(n, n);
         let template = fft::synthesize_spectrum(&setup);
@@ -167,7 +203,14 @@ pub fn run(args: BenchArgs) -> Result<()> {
             let path = args.dir.join(format!("bench-{n}.{ext}"));
             let t = time(repeats, || {
                 Output::prepare(&path)
-                    .and_then(|o| o.write(&synthesis.grid, &mapping))
+                    .and_then(|o| {
+                        o.write(&FieldOut {
+                            grid: &synthesis.grid,
+                            mapping: &mapping,
+                            slopes: None,
+                            about: "",
+                        })
+                    })
                     .expect("bench output is writable")
             });
             sizes.push((ext, std::fs::metadata(&path)?.len()));
@@ -183,6 +226,17 @@ pub fn run(args: BenchArgs) -> Result<()> {
         rows.push((
             "whole synthesis (hybrid)",
             time(repeats, || field::synthesize(&params)),
+        ));
+        // The default preview (grazing view, 1280×720, 4 rays per pixel), pyramids included.
+        let periodic = params.is_periodic();
+        let wind = params.wind.direction_deg.to_radians();
+        let preview = crate::render::RenderOptions::preview(&synthesis.grid, wind, periodic);
+        rows.push((
+            "render preview 1280×720, 4 spp",
+            time(repeats.min(3), || {
+                crate::render::render(&synthesis.grid, None, periodic, &preview)
+                    .expect("the default view renders")
+            }),
         ));
         println!(
             "\n{n}×{n}: bare 2D real inverse FFT {:.1} ms",
@@ -200,6 +254,80 @@ pub fn run(args: BenchArgs) -> Result<()> {
         for (ext, bytes) in sizes {
             println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
         }
+    }
+    if args.exports {
+        exports(&args.dir, repeats.min(3))?;
+    }
+    Ok(())
+}
+
+/// Times the mesh exports of periodic FFT fields: a 2048² OBJ and GLB (normals from
+/// central differences, and texture coordinates), and a 4×4 OBJ tile set of a 4096²
+/// field. Each file is removed after it is timed.
+fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
+    use crate::export::options::{ExportOptions, Tiles};
+    println!(
+        "\nexports, periodic FFT fields: medians of {repeats} runs; files removed after timing"
+    );
+    println!("  {:<34} {:>9} {:>9} {:>9}", "export", "ms", "MB", "MB/s");
+    let cases = [
+        (2048, "obj", None, "OBJ 2048², normals + UVs"),
+        (2048, "glb", None, "GLB 2048², normals + UVs"),
+        (
+            4096,
+            "obj",
+            Some(Tiles {
+                columns: 4,
+                rows: 4,
+            }),
+            "OBJ 4096², 4×4 tiles",
+        ),
+    ];
+    for (n, ext, tiles, name) in cases {
+        let params = Params {
+            method: crate::config::Method::Fft,
+            grid: crate::config::GridParams {
+                size: crate::config::Size2([n, n]),
+                extent_m: crate::config::Extent2([n as f64, n as f64]),
+            },
+            ..Params::default()
+        };
+        let grid = field::synthesize(&params)?.grid;
+        let mapping = HeightMapping {
+            min_m: 0.0,
+            max_m: 1.0,
+        };
+        let field = FieldOut {
+            grid: &grid,
+            mapping: &mapping,
+            slopes: None,
+            about: "bench",
+        };
+        let mut options = ExportOptions::default();
+        options.tiles = tiles;
+        let path = dir.join(format!("bench-mesh-{n}.{ext}"));
+        let mut runs = Vec::new();
+        let mut bytes = 0u64;
+        for _ in 0..repeats {
+            let out = Output::plan(&path, &options, &grid.spec, true)?;
+            let files: Vec<_> = out.files.iter().map(|f| f.path.clone()).collect();
+            let t = Instant::now();
+            out.write(&field)?;
+            runs.push(t.elapsed());
+            bytes = 0;
+            for f in files {
+                bytes += std::fs::metadata(&f)?.len();
+                std::fs::remove_file(&f)?;
+            }
+        }
+        let d = median(runs);
+        println!(
+            "  {:<34} {:>9.1} {:>9.1} {:>9.0}",
+            name,
+            d.as_secs_f64() * 1e3,
+            bytes as f64 / 1e6,
+            bytes as f64 / 1e6 / d.as_secs_f64()
+        );
     }
     Ok(())
 }

@@ -26,12 +26,16 @@ pub enum Command {
         /// Preset to print
         name: Option<String>,
     },
+    /// A numbered frame sequence of one sea (frame k at t = time + k/fps), one 16-bit mapping for all
+    Animate(Box<crate::animate::AnimateArgs>),
     /// Statistics and the measured spectrum of a height map (TIFF in meters, or PNG with its sidecar)
     Analyze(crate::analyze::AnalyzeArgs),
     /// Time each stage (spectrum, FFT, Perlin, blend, writers) against a bare 2D real FFT
     Bench(BenchArgs),
     /// The model spectrum: F(f) at given frequencies (--json, --csv), or plots of F(f) and Ψ(kx, ky)
     Spectrum(crate::spectrum_cmd::SpectrumArgs),
+    /// A shaded perspective preview of a field (synthesized, or --from a height map), 8-bit PNG
+    Render(Box<RenderArgs>),
 }
 
 /// Parameters of one field: a preset, then `--set` and flags over it.
@@ -88,6 +92,21 @@ pub struct FieldArgs {
     /// Heights mapped to 0 and 65535 in 16-bit outputs, meters (default: the field's min:max)
     #[arg(long, value_name = "MIN:MAX", allow_hyphen_values = true)]
     pub height_range: Option<String>,
+    /// Seamless loop period, s: every ω becomes the nearest non-zero multiple of 2π/T
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub loop_period: Option<String>,
+    /// Choppy waves: horizontal displacement factor λ (0: none; 1: trochoid-like)
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    pub choppiness: Option<String>,
+    /// Foam where the Jacobian of the choppy displacement is below this (default 0.3)
+    #[arg(long, value_name = "J", allow_hyphen_values = true)]
+    pub foam_threshold: Option<String>,
+    /// Frames per second (animate; the per-frame filtered-noise phase modes)
+    #[arg(long, value_name = "F", allow_hyphen_values = true)]
+    pub fps: Option<String>,
+    /// Filtered-noise motion: dispersion (default), translate, hot-air
+    #[arg(long, value_name = "MODE")]
+    pub phase_mode: Option<String>,
 }
 
 impl FieldArgs {
@@ -109,6 +128,11 @@ impl FieldArgs {
             ("seed", &self.seed),
             ("time", &self.time),
             ("height-range", &self.height_range),
+            ("loop-period", &self.loop_period),
+            ("choppiness", &self.choppiness),
+            ("foam-threshold", &self.foam_threshold),
+            ("fps", &self.fps),
+            ("phase-mode", &self.phase_mode),
         ]
         .into_iter()
         .filter_map(|(k, v)| v.as_deref().map(|v| (k, v)))
@@ -120,14 +144,82 @@ impl FieldArgs {
 pub struct GenerateArgs {
     #[command(flatten)]
     pub field: FieldArgs,
-    /// Output file; repeat for several formats of one field (.png 16-bit, .tif float meters).
-    /// Default: out/<preset>.png and out/<preset>.tif
+    /// Output file; repeat for several formats of one field (.png 16-bit, .tif/.exr float
+    /// meters, .r16/.raw/.r32 raw, .obj/.glb mesh). Default: out/<preset>.png and out/<preset>.tif
     #[arg(short = 'o', long = "output", value_name = "PATH")]
     pub outputs: Vec<PathBuf>,
+    /// How meshes, raw height maps and tiles are written
+    #[command(flatten)]
+    pub export: crate::export::options::ExportArgs,
     /// Print nothing but errors
     #[arg(short, long)]
     pub quiet: bool,
     /// Worker threads (default: all cores); results do not depend on it
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// Arguments of `seasynth render`; values are kept as typed and checked in
+/// `render::command`, so every bad value gets the same one-line error.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub field: FieldArgs,
+    /// Render this height map instead: a float TIFF in meters, or a 16-bit PNG with its sidecar
+    #[arg(long, value_name = "FILE")]
+    pub from: Option<PathBuf>,
+    /// The image to write, an 8-bit sRGB PNG
+    #[arg(short = 'o', long = "output", value_name = "PNG")]
+    pub output: PathBuf,
+    /// Image size in pixels (default 1280x720)
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
+    pub image: Option<String>,
+    /// Rays per pixel, 1 … 256 (default 4)
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub spp: Option<String>,
+    /// Camera placement: grazing (default), aerial, top
+    #[arg(long, value_name = "NAME")]
+    pub view: Option<String>,
+    /// Camera position in meters (x, y as the field's axes, z as its heights)
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub camera: Option<String>,
+    /// Camera height above the field's mean level, meters
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    pub camera_height: Option<String>,
+    /// Look direction, degrees from +x toward +y (default: down-wind)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub yaw: Option<String>,
+    /// Look direction above the horizontal, degrees (negative: down)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub pitch: Option<String>,
+    /// Look at this point instead of --yaw/--pitch, meters
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
+    pub look_at: Option<String>,
+    /// Horizontal field of view, degrees (default 60; top view 50)
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    pub fov: Option<String>,
+    /// Sun azimuth (from +x toward +y) and elevation, degrees (default: 20° left of the view, 14° up)
+    #[arg(long, value_name = "AZ,EL", allow_hyphen_values = true)]
+    pub sun: Option<String>,
+    /// Haze distance in meters, 0 for none (default: 4 field sizes or 10 camera heights)
+    #[arg(long, value_name = "M", allow_hyphen_values = true)]
+    pub haze: Option<String>,
+    /// Sky reflection weight: fresnel (Schlick, n = 1.33; default) or pseudo[:C] (1 − (n·v)^C, C = 0.3)
+    #[arg(long, value_name = "fresnel|pseudo[:C]")]
+    pub reflection: Option<String>,
+    /// Repeat the field to the horizon (the default for periodic fields)
+    #[arg(long, overrides_with = "no_repeat")]
+    pub repeat: bool,
+    /// Do not repeat: the field lies in a flat sea at its mean height
+    #[arg(long, overrides_with = "repeat")]
+    pub no_repeat: bool,
+    /// Turn off the distance low-pass of the surface (mean mip levels chosen by ray footprint)
+    #[arg(long)]
+    pub no_lod: bool,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Worker threads (default: all cores); images do not depend on it
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 }
@@ -143,6 +235,10 @@ pub struct BenchArgs {
     /// Folder for the writers' files
     #[arg(long, default_value = "out/bench")]
     pub dir: PathBuf,
+    /// Also time the mesh exports: 2048² OBJ and GLB, a 4×4 OBJ tile set at 4096²
+    /// (writes files of up to 3.7 GB in --dir, each removed after timing)
+    #[arg(long)]
+    pub exports: bool,
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,

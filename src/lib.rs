@@ -1,6 +1,7 @@
 //! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
 
 pub mod analyze;
+pub mod animate;
 pub mod app;
 pub mod bench;
 pub mod cli;
@@ -10,6 +11,7 @@ pub mod export;
 pub mod fastmath;
 pub mod field;
 pub mod grid;
+pub mod render;
 pub mod rng;
 pub mod spectrum;
 pub mod spectrum_cmd;

@@ -23,6 +23,7 @@ fn expected_variance(p: &Params) -> f64 {
         dispersion,
         seed: 0,
         time_s: 0.0,
+        loop_period_s: None,
     };
     let (dkx, dky) = setup.dk();
     let mut sum = 0.0;

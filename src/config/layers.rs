@@ -28,6 +28,11 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("tp", "spectrum.tp_s"),
     ("gamma", "spectrum.gamma"),
     ("height-range", "output.height_range"),
+    ("loop-period", "motion.loop_period_s"),
+    ("choppiness", "motion.choppiness"),
+    ("foam-threshold", "motion.foam_threshold"),
+    ("fps", "motion.fps"),
+    ("phase-mode", "motion.phase_mode"),
 ];
 
 /// The preset key a user's key stands for.

@@ -94,7 +94,60 @@ pub struct Params {
     pub fractal: FractalParams,
     pub perlin: PerlinConfig,
     pub blend: BlendParams,
+    pub motion: MotionParams,
     pub output: OutputParams,
+}
+
+/// How filtered-noise fields move (Mastin et al., "Ocean scene animation").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PhaseMode {
+    /// Each component advances by ω(k)·t, ω from the dispersion relation (the default).
+    Dispersion,
+    /// A linear phase: the whole image translates along the wind.
+    Translate,
+    /// "Hot Air": components near the peak advance `hot_air_dominant_rad` per frame, the
+    /// rest `hot_air_other_rad`.
+    HotAir,
+}
+
+/// Waves in motion: looping, choppiness, foam and the filtered-noise phase modes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MotionParams {
+    /// Seamless loop period T, s: every ω becomes the nearest non-zero multiple of 2π/T.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_period_s: Option<f64>,
+    /// Horizontal displacement factor λ of choppy waves (0: none).
+    pub choppiness: f64,
+    /// Foam where the Jacobian J < this.
+    pub foam_threshold: f64,
+    /// Frame rate, frames per second (animation, and the per-frame phase modes).
+    pub fps: f64,
+    /// Phase animation of `filtered-noise`.
+    pub phase_mode: PhaseMode,
+    /// Hot Air: radians per frame of the dominant components.
+    pub hot_air_dominant_rad: f64,
+    /// Hot Air: radians per frame of the other components.
+    pub hot_air_other_rad: f64,
+    /// Translate: speed along the wind, m/s (default: the phase speed of the peak wave).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub translate_speed_mps: Option<f64>,
+}
+
+impl Default for MotionParams {
+    fn default() -> Self {
+        Self {
+            loop_period_s: None,
+            choppiness: 0.0,
+            foam_threshold: 0.3,
+            fps: 30.0,
+            phase_mode: PhaseMode::Dispersion,
+            hot_air_dominant_rad: 0.05,
+            hot_air_other_rad: 0.003,
+            translate_speed_mps: None,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -252,6 +305,21 @@ pub struct OutputParams {
     pub height_range: Option<Range2>,
 }
 
+impl Params {
+    /// True when the field repeats over its extent (sample N equals sample 0): FFT and
+    /// filtered-noise fields, tileable Perlin noise, and the hybrid of the two under a
+    /// constant α. A ramp, radial or image α breaks the period.
+    pub fn is_periodic(&self) -> bool {
+        match self.method {
+            Method::Fft | Method::FilteredNoise => true,
+            Method::Perlin => self.perlin.tileable,
+            Method::Hybrid => {
+                self.perlin.tileable && matches!(self.blend.alpha, AlphaConfig::Constant { .. })
+            }
+        }
+    }
+}
+
 /// Phillips A of the default preset: gives the `li-tian` setting (512 m, 1 m grid,
 /// 7 m/s) an expected std of 0.30 m, i.e. Hs ≈ 1.2 m, the Hs of seasynth's fully
 /// developed Pierson–Moskowitz sea at 7 m/s (4√m0 with fm = 0.13 g/U).
@@ -269,6 +337,7 @@ impl Default for Params {
             fractal: FractalParams::default(),
             perlin: PerlinConfig::default(),
             blend: BlendParams::default(),
+            motion: MotionParams::default(),
             output: OutputParams::default(),
         }
     }

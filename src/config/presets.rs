@@ -30,6 +30,7 @@ pub const BUILTIN: &[(&str, &str)] = builtin_presets![
     "calm",
     "moderate",
     "storm",
+    "storm-loop",
     "swell",
 ];
 

@@ -1,7 +1,7 @@
 //! Validation of [`Params`]: every value checked once, where parameters are resolved; a
 //! valid `Params` can always be synthesized.
 
-use super::{AlphaConfig, Beta, Method, Params, Range2, SpectrumModel};
+use super::{AlphaConfig, Beta, Params, Range2, SpectrumModel};
 use crate::error::ParamError;
 
 /// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
@@ -198,12 +198,41 @@ impl Params {
         if let Some(r) = f.rolloff_m {
             positive("fractal.rolloff_m", " m", r)?;
         }
-        if self.method == Method::FilteredNoise && self.time_s != 0.0 {
+        let m = &self.motion;
+        if let Some(t) = m.loop_period_s {
+            positive("--loop-period (motion.loop_period_s)", " s", t)?;
+        }
+        finite("--choppiness (motion.choppiness)", m.choppiness)?;
+        if m.choppiness.abs() > 10.0 {
             return Err(err(
-                "--time (time_s)",
-                "0 for --method filtered-noise (a still image)",
-                self.time_s,
+                "--choppiness (motion.choppiness)",
+                "between -10 and 10",
+                m.choppiness,
             ));
+        }
+        finite("--foam-threshold (motion.foam_threshold)", m.foam_threshold)?;
+        if !(m.foam_threshold > 0.0 && m.foam_threshold <= 2.0) {
+            return Err(err(
+                "--foam-threshold (motion.foam_threshold)",
+                "> 0 and ≤ 2",
+                m.foam_threshold,
+            ));
+        }
+        positive("--fps (motion.fps)", " frames/s", m.fps)?;
+        if m.fps > 1000.0 {
+            return Err(err("--fps (motion.fps)", "≤ 1000 frames/s", m.fps));
+        }
+        for (name, v) in [
+            ("motion.hot_air_dominant_rad", m.hot_air_dominant_rad),
+            ("motion.hot_air_other_rad", m.hot_air_other_rad),
+        ] {
+            finite(name, v)?;
+            if v.abs() >= std::f64::consts::PI {
+                return Err(err(name, "between -π and π radians per frame", v));
+            }
+        }
+        if let Some(v) = m.translate_speed_mps {
+            finite("motion.translate_speed_mps", v)?;
         }
         Ok(())
     }

@@ -1,11 +1,16 @@
 //! The JSON sidecar written beside every output (`NAME.json` for `NAME.png`, `NAME.tif`):
 //! the fully resolved parameters (give the file back as `--preset NAME.json` to regenerate
-//! the outputs bit for bit), the seed, the version, the 16-bit mapping and statistics.
+//! the outputs bit for bit), the seed, the version, the 16-bit mapping and statistics,
+//! and what each export needs to be imported correctly: the mesh frame (`mesh`), the raw
+//! layout and encoding with Unity's and Unreal's import settings (`raw`), the EXR
+//! channel (`exr`), the GeoTIFF frame (`geotiff`) and the tile index (`tiles_index`).
 
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use super::mesh::MeshInfo;
+use super::raw::RawInfo;
 use super::{Format, HeightMapping};
 use crate::config::Params;
 use crate::field::SynthesisInfo;
@@ -63,8 +68,57 @@ pub struct Sidecar<'a> {
     pub stats: Stats,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mapping: Option<MappingInfo>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<MeshInfo>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub raw: Option<RawInfo>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exr: Option<ExrInfo>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub geotiff: Option<GeoTiffInfo>,
+    /// The tile index listing the tile files, when outputs are tiled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tiles_index: Option<String>,
     pub synthesis: &'a SynthesisInfo,
     pub params: &'a Params,
+}
+
+/// The EXR channel and its meaning.
+#[derive(Debug, Serialize)]
+pub struct ExrInfo {
+    pub channel: &'static str,
+    pub sample: &'static str,
+}
+
+impl Default for ExrInfo {
+    fn default() -> Self {
+        Self {
+            channel: super::exr::CHANNEL,
+            sample: "32-bit float, meters; uncompressed scan lines, row 0 is y = 0",
+        }
+    }
+}
+
+/// The GeoTIFF frame of the float TIFF.
+#[derive(Debug, Serialize)]
+pub struct GeoTiffInfo {
+    pub pixel_scale_m: [f64; 3],
+    pub tiepoint: [f64; 6],
+    pub crs: &'static str,
+    pub raster_type: &'static str,
+    pub model_y: &'static str,
+}
+
+impl GeoTiffInfo {
+    pub fn new(spec: &GridSpec) -> Self {
+        Self {
+            pixel_scale_m: [spec.dx_m(), spec.dy_m(), 0.0],
+            tiepoint: [0.0; 6],
+            crs: super::tiff32::CRS_CITATION,
+            raster_type: "PixelIsPoint: sample (i, j) at model (i*dx_m, -j*dy_m)",
+            model_y: "GIS model Y = -y (row 0 at the top)",
+        }
+    }
 }
 
 pub const FORMULA: &str =
@@ -80,6 +134,11 @@ impl<'a> Sidecar<'a> {
             grid: GridInfo::from(&params.grid_spec()),
             stats,
             mapping: None,
+            mesh: None,
+            raw: None,
+            exr: None,
+            geotiff: None,
+            tiles_index: None,
             synthesis: info,
             params,
         }

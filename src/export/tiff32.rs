@@ -1,12 +1,53 @@
 //! 32-bit float TIFF, one channel (SampleFormat = IEEE float), heights in meters,
 //! uncompressed (deflate makes float heights barely smaller and ten times slower to write).
+//!
+//! GeoTIFF tags give GIS tools (GDAL, QGIS) the grid spacing in meters: ModelPixelScale
+//! (dx, dy, 0), ModelTiepoint (0, 0, 0, 0, 0, 0) — sample (0, 0) at the origin — and a
+//! GeoKey directory declaring a user-defined local engineering frame in meters
+//! (GTModelType 32767, ProjLinearUnits 9001 = metre) with points as samples
+//! (RasterPixelIsPoint). GIS convention puts model Y = −j·dy, so GDAL reports the pixel
+//! size as (dx, −dy) and, for point samples, an origin half a pixel to the upper left.
 
 use std::io::{Seek, Write};
+
+use tiff::tags::Tag;
 
 use crate::grid::Grid;
 
 /// Rows per strip: ~256 KiB strips for 4096-wide grids.
 const ROWS_PER_STRIP: u32 = 16;
+
+/// The citation of the frame, in GeoAsciiParams (`|` ends each string).
+pub const CRS_CITATION: &str = "seasynth local engineering frame, meters";
+
+/// GeoKey directory: version 1.1.0 and four keys (key, location, count, value):
+/// GTModelType = user-defined, GTRasterType = PixelIsPoint, GTCitation in the ASCII
+/// parameters, ProjLinearUnits = metre.
+fn geo_keys(citation_len: u16) -> [u16; 20] {
+    const ASCII_PARAMS: u16 = 34737;
+    [
+        1,
+        1,
+        0,
+        4, //
+        1024,
+        0,
+        1,
+        32767, //
+        1025,
+        0,
+        1,
+        2, //
+        1026,
+        ASCII_PARAMS,
+        citation_len,
+        0, //
+        3076,
+        0,
+        1,
+        9001,
+    ]
+}
 
 /// Encodes `grid` as a single-channel float TIFF.
 pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {
@@ -19,6 +60,20 @@ pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {
         )
         .map_err(err)?;
     image.rows_per_strip(ROWS_PER_STRIP).map_err(err)?;
+    let dir = image.encoder();
+    let scale = [grid.spec.dx_m(), grid.spec.dy_m(), 0.0];
+    dir.write_tag(Tag::ModelPixelScaleTag, &scale[..])
+        .map_err(err)?;
+    dir.write_tag(Tag::ModelTiepointTag, &[0.0f64; 6][..])
+        .map_err(err)?;
+    let citation = format!("{CRS_CITATION}|");
+    dir.write_tag(
+        Tag::GeoKeyDirectoryTag,
+        &geo_keys(citation.len() as u16)[..],
+    )
+    .map_err(err)?;
+    dir.write_tag(Tag::GeoAsciiParamsTag, citation.as_str())
+        .map_err(err)?;
     image.write_data(&grid.data).map_err(err)
 }
 
@@ -54,5 +109,31 @@ mod tests {
         let (w, h, v) = read(&path).unwrap();
         assert_eq!((w, h), (40, 23));
         assert!(v == g.data, "float samples must read back unchanged");
+    }
+
+    #[test]
+    fn geotiff_tags_give_the_spacing_in_meters_and_a_local_frame() {
+        let g = Grid::zeros(GridSpec::new(8, 4, 20.0, 6.0));
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("g.tif");
+        write(std::fs::File::create(&path).unwrap(), &g).unwrap();
+        let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
+        let mut dec = tiff::decoder::Decoder::new(file).unwrap();
+        assert_eq!(
+            dec.get_tag_f64_vec(Tag::ModelPixelScaleTag).unwrap(),
+            [2.5, 1.5, 0.0]
+        );
+        assert_eq!(
+            dec.get_tag_f64_vec(Tag::ModelTiepointTag).unwrap(),
+            [0.0; 6]
+        );
+        let keys = dec.get_tag_u16_vec(Tag::GeoKeyDirectoryTag).unwrap();
+        assert_eq!(&keys[..4], [1, 1, 0, 4], "header: version and key count");
+        assert!(
+            keys.chunks(4).any(|k| k == [3076, 0, 1, 9001]),
+            "metre units: {keys:?}"
+        );
+        let ascii = dec.get_tag_ascii_string(Tag::GeoAsciiParamsTag).unwrap();
+        assert_eq!(ascii, format!("{CRS_CITATION}|"));
     }
 }

@@ -60,6 +60,19 @@ pub struct SpectrumSetup<'a> {
     /// Seed of the amplitude stream (already a sub-seed).
     pub seed: u64,
     pub time_s: f64,
+    /// Seamless loop period T, s: every ω is rounded to the nearest non-zero multiple of
+    /// 2π/T (see [`loop_omega`]), so h̃(k, t + T) = h̃(k, t).
+    pub loop_period_s: Option<f64>,
+}
+
+/// ω rounded to the nearest non-zero multiple of 2π/T: waves slower than 2π/T take one
+/// cycle per period instead of freezing; ω = 0 stays 0.
+pub fn loop_omega(omega: f64, period_s: f64) -> f64 {
+    if omega == 0.0 {
+        return 0.0;
+    }
+    let base = std::f64::consts::TAU / period_s;
+    (omega / base).round().max(1.0) * base
 }
 
 impl SpectrumSetup<'_> {
@@ -94,14 +107,26 @@ impl SpectrumSetup<'_> {
         self.polar_from(self.spectrum.amplitude_variance(kx, ky, dkx, dky), n, m)
     }
 
-    /// ω(k)·t.
+    /// ω(k), rad/s, from the dispersion relation, rounded for a loop when one is set.
+    pub fn omega(&self, kx: f64, ky: f64) -> f64 {
+        let w = self.dispersion.omega((kx * kx + ky * ky).sqrt());
+        match self.loop_period_s {
+            Some(t) => loop_omega(w, t),
+            None => w,
+        }
+    }
+
+    /// ω(k)·t. With a loop period T the phase is ω·(t mod T), so frames T apart match.
     #[inline]
     fn omega_t(&self, kx: f64, ky: f64) -> f64 {
         if self.time_s == 0.0 {
-            0.0
-        } else {
-            self.dispersion.omega((kx * kx + ky * ky).sqrt()) * self.time_s
+            return 0.0;
         }
+        let t = match self.loop_period_s {
+            Some(period) => self.time_s - period * (self.time_s / period).floor(),
+            None => self.time_s,
+        };
+        self.omega(kx, ky) * t
     }
 
     /// h̃0 at indices `(n, m)`: (ξr + iξi)/√2·√P(k).
@@ -167,18 +192,11 @@ pub(crate) struct LineBuffers {
     /// E|h̃0(k)|² and E|h̃0(−k)|² of the line (kernels may reuse them).
     pub pa: Vec<f64>,
     pub pb: Vec<f64>,
-    /// Scratch for kernels: Rayleigh factors, phases, arguments, sines and cosines of
-    /// the k (a) and −k (b) terms.
+    /// Scratch for kernels: Rayleigh factors and phases of the k (a) and −k (b) terms.
     pub ra: Vec<f64>,
     pub rb: Vec<f64>,
     pub pha: Vec<f64>,
     pub phb: Vec<f64>,
-    pub xa: Vec<f64>,
-    pub xb: Vec<f64>,
-    pub sa: Vec<f64>,
-    pub ca: Vec<f64>,
-    pub sb: Vec<f64>,
-    pub cb: Vec<f64>,
 }
 
 /// Builds the half spectrum line by line in parallel: for each kx line n, the spectrum
@@ -208,12 +226,6 @@ where
                 rb: vec![0.0; ny],
                 pha: vec![0.0; ny],
                 phb: vec![0.0; ny],
-                xa: vec![0.0; ny],
-                xb: vec![0.0; ny],
-                sa: vec![0.0; ny],
-                ca: vec![0.0; ny],
-                sb: vec![0.0; ny],
-                cb: vec![0.0; ny],
             },
             |buf, (n, line)| {
                 let n = n as i64;
@@ -241,37 +253,163 @@ where
 /// Builds h̃(k, t) for every resolved wavevector with n ≥ 0 (Tessendorf). Values equal
 /// [`SpectrumSetup::amplitude`]'s.
 pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
-    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     build_lines(setup, |n, kx, buf, line| {
         // Whole-line passes that vectorize (see `field::lines`); the values are those of
         // `polar_from` and `combine`, bit for bit.
-        polar_line(setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
-        polar_line(setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
-        for idx in 0..ny {
-            let wt = setup.omega_t(kx, buf.ky[idx]);
-            (buf.ra[idx], buf.pha[idx]) = scale_draw(buf.pa[idx], buf.ra[idx], buf.pha[idx]);
-            (buf.rb[idx], buf.phb[idx]) = scale_draw(buf.pb[idx], buf.rb[idx], buf.phb[idx]);
-            buf.xa[idx] = buf.pha[idx] - wt;
-            buf.xb[idx] = buf.phb[idx] - wt;
+        draw_line(setup, n, buf);
+        let draws = Draws {
+            ra: &buf.ra,
+            pha: &buf.pha,
+            rb: &buf.rb,
+            phb: &buf.phb,
+        };
+        combine_line(setup, n, kx, &buf.ky, draws, line)
+    })
+}
+
+/// The scaled draws ρ, φ of h̃0(k) (ra, pha) and h̃0(−k) (rb, phb) of line n, from the
+/// amplitude variances in `buf.pa`, `buf.pb`.
+fn draw_line(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) {
+    let ny = setup.spec.ny;
+    polar_line(setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
+    polar_line(setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
+    for idx in 0..ny {
+        (buf.ra[idx], buf.pha[idx]) = scale_draw(buf.pa[idx], buf.ra[idx], buf.pha[idx]);
+        (buf.rb[idx], buf.phb[idx]) = scale_draw(buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+    }
+}
+
+/// The scaled draws of one line: h̃0(k) = ρa·e^{iφa}, h̃0(−k) = ρb·e^{iφb}.
+#[derive(Clone, Copy)]
+pub(crate) struct Draws<'a> {
+    pub ra: &'a [f64],
+    pub pha: &'a [f64],
+    pub rb: &'a [f64],
+    pub phb: &'a [f64],
+}
+
+/// Per-thread buffers of [`combine_line`]: arguments, sines and cosines.
+#[derive(Default)]
+struct CombineBuffers {
+    xa: Vec<f64>,
+    xb: Vec<f64>,
+    sa: Vec<f64>,
+    ca: Vec<f64>,
+    sb: Vec<f64>,
+    cb: Vec<f64>,
+}
+
+thread_local! {
+    static COMBINE: std::cell::RefCell<CombineBuffers> =
+        std::cell::RefCell::new(CombineBuffers::default());
+}
+
+/// h̃(k, t) = ρa·e^{i(φa − ωt)} + ρb·e^{−i(φb − ωt)} of line n into `line`, and the
+/// line's peak max(ρa², ρb²). The values of [`SpectrumSetup::amplitude`], bit for bit.
+pub(crate) fn combine_line(
+    setup: &SpectrumSetup,
+    n: i64,
+    kx: f64,
+    ky: &[f64],
+    d: Draws,
+    line: &mut [Complex32],
+) -> f64 {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    COMBINE.with(|cell| {
+        let mut guard = cell.borrow_mut();
+        let b = &mut *guard;
+        for v in [
+            &mut b.xa, &mut b.xb, &mut b.sa, &mut b.ca, &mut b.sb, &mut b.cb,
+        ] {
+            v.resize(ny, 0.0);
         }
-        sin_cos_line(&buf.xa, &mut buf.sa, &mut buf.ca);
-        sin_cos_line(&buf.xb, &mut buf.sb, &mut buf.cb);
+        for (idx, &y) in ky.iter().enumerate().take(ny) {
+            let wt = setup.omega_t(kx, y);
+            b.xa[idx] = d.pha[idx] - wt;
+            b.xb[idx] = d.phb[idx] - wt;
+        }
+        sin_cos_line(&b.xa, &mut b.sa, &mut b.ca);
+        sin_cos_line(&b.xb, &mut b.sb, &mut b.cb);
         let mut peak = 0.0f64;
         for (idx, out) in line.iter_mut().enumerate() {
             let m = signed_index(idx, ny);
             if !is_resolved(n, m, nx, ny) {
                 continue;
             }
-            let (ra, rb) = (buf.ra[idx], buf.rb[idx]);
+            let (ra, rb) = (d.ra[idx], d.rb[idx]);
             let h = Complex::new(
-                ra * buf.ca[idx] + rb * buf.cb[idx],
-                ra * buf.sa[idx] - rb * buf.sb[idx],
+                ra * b.ca[idx] + rb * b.cb[idx],
+                ra * b.sa[idx] - rb * b.sb[idx],
             );
             peak = peak.max((ra * ra).max(rb * rb));
             *out = Complex32::new(h.re as f32, h.im as f32);
         }
         peak
     })
+}
+
+/// The scaled draws of every line of a spectrum, kept so that the frames of an
+/// animation only redo the time-dependent part (sines and cosines of φ − ωt).
+pub struct Amplitudes {
+    ky: Vec<f64>,
+    /// Per line n: ρa, φa, ρb, φb, each `ny` long.
+    lines: Vec<[Vec<f64>; 4]>,
+    h0max_m: f64,
+}
+
+impl Amplitudes {
+    /// The draws of `setup` (its time is not used).
+    pub fn new(setup: &SpectrumSetup) -> Self {
+        let ny = setup.spec.ny;
+        let lines = setup.spec.nx / 2 + 1;
+        let mut store: Vec<[Vec<f64>; 4]> = Vec::with_capacity(lines);
+        store.resize_with(lines, Default::default);
+        let slots = std::sync::Mutex::new(&mut store);
+        let half = build_lines(setup, |n, _kx, buf, _line| {
+            draw_line(setup, n, buf);
+            let peak = buf
+                .ra
+                .iter()
+                .zip(&buf.rb)
+                .fold(0.0f64, |p, (a, b)| p.max((a * a).max(b * b)));
+            let v = [
+                buf.ra.clone(),
+                buf.pha.clone(),
+                buf.rb.clone(),
+                buf.phb.clone(),
+            ];
+            slots.lock().expect("no panics while holding the lock")[n as usize] = v;
+            peak
+        });
+        let ky = (0..ny)
+            .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
+            .collect();
+        Self {
+            ky,
+            lines: store,
+            h0max_m: half.h0max_m,
+        }
+    }
+
+    /// h̃(k, t) at `setup.time_s`: bit for bit [`synthesize_spectrum`] of the same setup.
+    pub fn frame(&self, setup: &SpectrumSetup) -> HalfSpectrum {
+        let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+        let mut data = vec![Complex32::new(0.0, 0.0); (nx / 2 + 1) * ny];
+        data.par_chunks_mut(ny)
+            .zip(self.lines.par_iter())
+            .enumerate()
+            .for_each(|(n, (line, [ra, pha, rb, phb]))| {
+                let kx = setup.wavevector(n as i64, 0).0;
+                let d = Draws { ra, pha, rb, phb };
+                combine_line(setup, n as i64, kx, &self.ky, d, line);
+            });
+        HalfSpectrum {
+            nx,
+            ny,
+            data,
+            h0max_m: self.h0max_m,
+        }
+    }
 }
 
 /// Amplitude variances at or below this (amplitudes of ~1e-30 m) are left out: they
@@ -406,6 +544,7 @@ mod tests {
             dispersion: Dispersion::Deep,
             seed,
             time_s,
+            loop_period_s: None,
         }
     }
 
@@ -555,6 +694,7 @@ mod tests {
             dispersion: Dispersion::Deep,
             seed: 42,
             time_s: 0.0,
+            loop_period_s: None,
         };
         let h0 = probe.h0(n, m);
         for t in [0.0, 1.3, 4.0] {

@@ -1,5 +1,6 @@
 //! Height fields: each method computes a [`Grid`] of heights in meters.
 
+pub mod dynamics;
 pub mod fft;
 pub mod filtered_noise;
 pub mod hybrid;
@@ -43,8 +44,11 @@ pub struct SynthesisInfo {
 
 /// A computed field and what was learned computing it.
 pub struct Synthesis {
+    /// Heights in meters (the choppy surface resampled onto the grid when λ ≠ 0).
     pub grid: Grid,
     pub info: SynthesisInfo,
+    /// Slopes, displacement and Jacobian, when asked for (see [`Synthesizer::new`]).
+    pub surface: dynamics::Surface,
 }
 
 /// The Perlin parameters of `params`, with their sub-seed.
@@ -158,15 +162,42 @@ fn model_from(params: &Params, sea: Option<SeaModel>) -> Result<(Box<dyn Spectru
 
 /// Computes the field that validated `params` describe.
 pub fn synthesize(params: &Params) -> Result<Synthesis> {
-    let spec = params.grid_spec();
-    let mut info = SynthesisInfo::default();
-    // Inputs that can fail are read before the expensive work.
-    let alpha = match params.method {
-        Method::Hybrid => Some(weight::AlphaMap::new(&params.blend.alpha, &spec)?),
-        _ => None,
-    };
-    let fft = match params.method {
-        Method::Fft | Method::Hybrid | Method::FilteredNoise => {
+    Ok(Synthesizer::new(params, dynamics::Extras::default(), false)?.frame(params.time_s))
+}
+
+/// A prepared synthesis: everything that does not depend on time (the spectrum, the
+/// weight map, the Perlin field and, when kept, the random draws), so the frames of an
+/// animation redo only the time-dependent part. Frames equal [`synthesize`] at their time
+/// bit for bit.
+pub struct Synthesizer {
+    params: Params,
+    spec: crate::grid::GridSpec,
+    info: SynthesisInfo,
+    model: Option<(Box<dyn Spectrum>, Dispersion)>,
+    alpha: Option<weight::AlphaMap>,
+    noise: Option<Vec<f32>>,
+    motion: Option<filtered_noise::Motion>,
+    amplitudes: Option<fft::Amplitudes>,
+    plan: Option<fft::InverseFft2>,
+    extras: dynamics::Extras,
+}
+
+impl Synthesizer {
+    /// `extras`: the derived fields each frame computes; `keep_draws`: keep the random
+    /// amplitudes between frames (memory: 32 bytes per wavevector of the half plane).
+    pub fn new(params: &Params, extras: dynamics::Extras, keep_draws: bool) -> Result<Self> {
+        let spec = params.grid_spec();
+        let mut info = SynthesisInfo::default();
+        // Inputs that can fail are read before the expensive work.
+        let alpha = match params.method {
+            Method::Hybrid => Some(weight::AlphaMap::new(&params.blend.alpha, &spec)?),
+            _ => None,
+        };
+        let spectral = matches!(
+            params.method,
+            Method::Fft | Method::Hybrid | Method::FilteredNoise
+        );
+        let model = if spectral {
             if params.spectrum.model == SpectrumModel::Phillips {
                 info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
             }
@@ -176,60 +207,137 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
                 info.model_hs_m = Some(sea.freq.hs_m());
                 info.model_tp_s = Some(1.0 / sea.freq.peak_hz());
             }
-            let (model, dispersion) = model_from(params, sea)?;
-            let setup = fft::SpectrumSetup {
-                spec,
-                spectrum: model.as_ref(),
-                dispersion,
-                seed: sub_seed(params.seed, Stream::SpectrumAmplitude),
-                time_s: params.time_s,
-            };
+            Some(model_from(params, sea)?)
+        } else {
+            None
+        };
+        let noise = match params.method {
+            Method::Perlin | Method::Hybrid => {
+                let pp = perlin_params(params);
+                info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
+                Some(perlin::perlin_field(&spec, &pp))
+            }
+            Method::Fft | Method::FilteredNoise => None,
+        };
+        let mut this = Self {
+            params: params.clone(),
+            spec,
+            info,
+            model,
+            alpha,
+            noise,
+            motion: None,
+            amplitudes: None,
+            plan: spectral.then(|| fft::InverseFft2::new(spec.nx, spec.ny)),
+            extras,
+        };
+        if params.method == Method::FilteredNoise {
+            let setup = this.setup(0.0).expect("spectral methods have a model");
+            let dir = params.wind.direction_deg.to_radians();
+            let wind = (dir.cos(), dir.sin());
+            let (k_peak, band) = filtered_noise::peak_band(&setup, wind, 2.0 / 3.0);
+            let m = &params.motion;
+            this.motion = Some(filtered_noise::Motion {
+                mode: m.phase_mode,
+                wind,
+                fps: m.fps,
+                dominant_rad: m.hot_air_dominant_rad,
+                other_rad: m.hot_air_other_rad,
+                speed_mps: m
+                    .translate_speed_mps
+                    .unwrap_or_else(|| (crate::spectrum::G / k_peak).sqrt()),
+                band,
+            });
+        } else if keep_draws {
+            this.amplitudes = this.setup(0.0).map(|setup| fft::Amplitudes::new(&setup));
+        }
+        Ok(this)
+    }
+
+    fn setup(&self, time_s: f64) -> Option<fft::SpectrumSetup<'_>> {
+        let (model, dispersion) = self.model.as_ref()?;
+        Some(fft::SpectrumSetup {
+            spec: self.spec,
+            spectrum: model.as_ref(),
+            dispersion: *dispersion,
+            seed: sub_seed(self.params.seed, Stream::SpectrumAmplitude),
+            time_s,
+            loop_period_s: self.params.motion.loop_period_s,
+        })
+    }
+
+    /// The field at `time_s`.
+    pub fn frame(&self, time_s: f64) -> Synthesis {
+        let params = &self.params;
+        let spec = self.spec;
+        let mut info = self.info.clone();
+        let mut surface = dynamics::Surface::default();
+        let lambda = params.motion.choppiness;
+        let fft = self.setup(time_s).map(|setup| {
+            let plan = self.plan.as_ref().expect("spectral methods have a plan");
             let half = if params.method == Method::FilteredNoise {
-                filtered_noise::filtered_spectrum(&setup)
+                filtered_noise::filtered_spectrum(&setup, self.motion.as_ref())
+            } else if let Some(a) = &self.amplitudes {
+                a.frame(&setup)
             } else {
                 fft::synthesize_spectrum(&setup)
             };
             if params.method != Method::FilteredNoise {
                 info.h0max_m = Some(half.h0max_m);
             }
-            let data = fft::InverseFft2::new(spec.nx, spec.ny).process(half);
-            Some(Grid::new(spec, data))
-        }
-        Method::Perlin => None,
-    };
-    let noise = match params.method {
-        Method::Perlin | Method::Hybrid => {
-            let pp = perlin_params(params);
-            info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
-            Some(perlin::perlin_field(&spec, &pp))
-        }
-        Method::Fft | Method::FilteredNoise => None,
-    };
-    let grid = match (fft, noise, alpha) {
-        (Some(mut f), Some(p), Some(alpha)) => {
-            let b = match params.blend.beta {
-                Beta::Paper => info.h0max_m.unwrap_or(0.0),
-                Beta::Matched => {
-                    let pstd = crate::grid::Stats::of_rows(&p, spec.nx).std_m;
-                    if pstd > 0.0 {
-                        f.stats().std_m / pstd
-                    } else {
-                        0.0
-                    }
+            if self.extras.any() || lambda != 0.0 {
+                surface = dynamics::surface(&half, &spec, plan, self.extras, lambda);
+            }
+            let mut data = plan.process(half);
+            if let Some(d) = surface.displacement.as_ref().filter(|_| lambda != 0.0) {
+                let choppy = dynamics::resample_choppy(&data, d, &spec);
+                let still = std::mem::replace(&mut data, choppy);
+                if self.extras.displacement {
+                    surface.undisplaced_height = Some(still);
                 }
-                Beta::Meters(b) => b,
-            } * params.blend.beta_scale;
-            info.beta_m = Some(b);
-            hybrid::blend_in_place(&mut f, &p, &alpha, b as f32);
-            f
+            }
+            if !self.extras.displacement {
+                surface.displacement = None;
+            }
+            Grid::new(spec, data)
+        });
+        let grid = match (fft, self.noise.as_ref(), self.alpha.as_ref()) {
+            (Some(mut f), Some(p), Some(alpha)) => {
+                let b = match params.blend.beta {
+                    Beta::Paper => info.h0max_m.unwrap_or(0.0),
+                    Beta::Matched => {
+                        let pstd = crate::grid::Stats::of_rows(p, spec.nx).std_m;
+                        if pstd > 0.0 {
+                            f.stats().std_m / pstd
+                        } else {
+                            0.0
+                        }
+                    }
+                    Beta::Meters(b) => b,
+                } * params.blend.beta_scale;
+                info.beta_m = Some(b);
+                hybrid::blend_in_place(&mut f, p, alpha, b as f32);
+                f
+            }
+            (Some(f), None, _) => f,
+            (None, Some(p), _) => {
+                let amp = params.perlin.amplitude_m as f32;
+                Grid::new(spec, p.iter().map(|v| v * amp).collect())
+            }
+            _ => unreachable!("every method computes at least one field"),
+        };
+        // Without a spectrum of the whole field (Perlin, or the hybrid blend), slopes by
+        // central differences of the heights.
+        if self.extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
+            surface.slopes = Some(dynamics::slopes_central(&grid.data, &spec));
         }
-        (Some(f), None, _) => f,
-        (None, Some(mut p), _) => {
-            let amp = params.perlin.amplitude_m as f32;
-            p.iter_mut().for_each(|v| *v *= amp);
-            Grid::new(spec, p)
+        if self.extras.jacobian && surface.jacobian.is_none() {
+            surface.jacobian = Some(vec![1.0; spec.len()]);
         }
-        _ => unreachable!("every method computes at least one field"),
-    };
-    Ok(Synthesis { grid, info })
+        Synthesis {
+            grid,
+            info,
+            surface,
+        }
+    }
 }

@@ -117,7 +117,7 @@ multiversion! {
             } else {
                 0.25 * ln_positive_normal(v) - sh.x_shift
             };
-            let special = (peaked & (ga >= GAMMA_ARG_FAST) & (ga < 700.0))
+            let special = (peaked & (GAMMA_ARG_FAST..700.0).contains(&ga))
                 | (k2 <= 0.0)
                 | (k2 == f64::INFINITY)
                 | (u > U_MAX)
@@ -145,7 +145,7 @@ multiversion! {
                 e[i] = -1.25 * u + on * (sh.ln_gamma * g);
                 let lv = ln_positive_normal(v);
                 x[i] = if plain { 0.0 } else { 0.25 * lv - sh.x_shift };
-                flags |= ((peaked & (ga >= GAMMA_ARG_FAST) & (ga < 700.0))
+                flags |= ((peaked & (GAMMA_ARG_FAST..700.0).contains(&ga))
                     | (kk2 <= 0.0)
                     | (kk2 == f64::INFINITY)
                     | (u > U_MAX)

@@ -1,0 +1,322 @@
+//! `seasynth animate`: a numbered frame sequence of one sea, frame k at
+//! t = time + k/fps, with one 16-bit height mapping for every frame, a sidecar for the
+//! sequence and `--resume`.
+//!
+//! Frame k is bit for bit the field of `generate --time t_k` with the same parameters:
+//! the random draws are made once and kept (`field::Synthesizer`), and each frame redoes
+//! only the time-dependent sines and cosines and the transforms. Frames are computed a few
+//! at a time in parallel, as many as the memory estimate allows.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::cli::FieldArgs;
+use crate::config::Params;
+use crate::error::{Error, ParamError};
+use crate::export::maps::{self, MapContext, MapKind};
+use crate::export::{HeightMapping, Staged, png16, tiff32};
+use crate::field::{Synthesis, Synthesizer};
+
+#[derive(Debug, Args)]
+pub struct AnimateArgs {
+    #[command(flatten)]
+    pub field: FieldArgs,
+    /// Number of frames
+    #[arg(long, default_value_t = 30)]
+    pub frames: usize,
+    /// Output folder (created if missing)
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub dir: PathBuf,
+    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp
+    #[arg(long, value_delimiter = ',', default_value = "png")]
+    pub format: Vec<String>,
+    /// Skip frames whose files are all there (files appear only when complete)
+    #[arg(long)]
+    pub resume: bool,
+    /// Frames computed at once (default: cores, limited by memory)
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Worker threads (default: all cores); results do not depend on it
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// One file kind of a frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Png,
+    Tif,
+    Map(MapKind),
+}
+
+impl Kind {
+    fn parse(s: &str) -> Result<Self, ParamError> {
+        Ok(match s.trim() {
+            "png" => Kind::Png,
+            "tif" | "tiff" => Kind::Tif,
+            "normal" => Kind::Map(MapKind::Normal),
+            "foam" => Kind::Map(MapKind::Foam),
+            "jacobian" => Kind::Map(MapKind::Jacobian),
+            "disp" => Kind::Map(MapKind::Displacement),
+            other => {
+                return Err(ParamError {
+                    name: "--format".into(),
+                    allowed: "png, tif, normal, foam, jacobian or disp".into(),
+                    got: other.into(),
+                });
+            }
+        })
+    }
+
+    fn suffix(&self) -> &'static str {
+        match self {
+            Kind::Png => "png",
+            Kind::Tif => "tif",
+            Kind::Map(MapKind::Normal) => "normal.png",
+            Kind::Map(MapKind::Foam) => "foam.png",
+            Kind::Map(MapKind::Jacobian) => "jacobian.tif",
+            Kind::Map(MapKind::Displacement) => "disp.tif",
+        }
+    }
+}
+
+/// The sequence sidecar, `DIR/sequence.json`.
+#[derive(Debug, Serialize, Deserialize)]
+struct SequenceDoc {
+    tool: String,
+    version: String,
+    frames: usize,
+    fps: f64,
+    /// Frame k shows t = start_time_s + k / fps.
+    start_time_s: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    loop_period_s: Option<f64>,
+    /// File names: the pattern with {k} the frame number, 5 digits.
+    files: Vec<String>,
+    /// The one 16-bit mapping of every frame's height PNG.
+    mapping_min_m: f64,
+    mapping_max_m: f64,
+    mapping_source: String,
+    params: Params,
+}
+
+fn frame_path(dir: &Path, k: usize, kind: Kind) -> PathBuf {
+    dir.join(format!("frame_{k:05}.{}", kind.suffix()))
+}
+
+/// A rough peak-memory estimate of one frame, bytes.
+fn frame_bytes(params: &Params, kinds: &[Kind]) -> u64 {
+    let n = params.grid_spec().len() as u64;
+    let maps = kinds.iter().filter(|k| matches!(k, Kind::Map(_))).count() as u64;
+    // Height, spectrum and transform buffers, plus up to eight derived fields.
+    n * (24 + maps * 20)
+}
+
+/// Available memory from /proc/meminfo (Linux), bytes.
+fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+pub fn run(args: AnimateArgs) -> Result<()> {
+    crate::app::set_threads(args.threads)?;
+    let params = crate::app::resolve_params(&args.field)?;
+    if args.frames == 0 || args.frames > 1_000_000 {
+        return Err(Error::Param(ParamError {
+            name: "--frames".into(),
+            allowed: "1 … 1000000".into(),
+            got: args.frames.to_string(),
+        })
+        .into());
+    }
+    let mut kinds = Vec::new();
+    for f in &args.format {
+        let k = Kind::parse(f).map_err(Error::Param)?;
+        if !kinds.contains(&k) {
+            kinds.push(k);
+        }
+    }
+    let map_kinds: Vec<MapKind> = kinds
+        .iter()
+        .filter_map(|k| match k {
+            Kind::Map(m) => Some(*m),
+            _ => None,
+        })
+        .collect();
+    std::fs::create_dir_all(&args.dir)
+        .map_err(|e| Error::io(&args.dir, e))
+        .with_context(|| format!("cannot create {}", args.dir.display()))?;
+    let fps = params.motion.fps;
+    let time_of = |k: usize| params.time_s + k as f64 / fps;
+    let side_path = args.dir.join("sequence.json");
+    let earlier: Option<SequenceDoc> = if args.resume {
+        std::fs::read(&side_path)
+            .ok()
+            .and_then(|b| serde_json::from_slice(&b).ok())
+    } else {
+        None
+    };
+    if let Some(e) = &earlier
+        && (e.params != params || e.frames != args.frames)
+    {
+        return Err(Error::Output {
+            path: side_path.clone(),
+            message: "holds another sequence (other parameters or frame count): remove the folder or drop --resume".into(),
+        }
+        .into());
+    }
+    let synth = Synthesizer::new(&params, maps::extras_for(&map_kinds), true)?;
+    let jobs = args.jobs.unwrap_or_else(|| {
+        let by_memory = available_memory()
+            .map(|m| (m / 2 / frame_bytes(&params, &kinds).max(1)).max(1) as usize)
+            .unwrap_or(1);
+        rayon::current_num_threads().min(by_memory).max(1)
+    });
+    let quiet = args.quiet;
+    let started = Instant::now();
+    // One mapping for the whole sequence: given, kept from the earlier run, or the range
+    // of every frame's heights (a first pass without files).
+    let (mapping, source) = match (params.output.height_range, &earlier) {
+        (Some(r), _) => (
+            HeightMapping {
+                min_m: r.0[0],
+                max_m: r.0[1],
+            },
+            "--height-range".to_string(),
+        ),
+        (None, Some(e)) => (
+            HeightMapping {
+                min_m: e.mapping_min_m,
+                max_m: e.mapping_max_m,
+            },
+            e.mapping_source.clone(),
+        ),
+        (None, None) if kinds.contains(&Kind::Png) => {
+            let heights_only = Synthesizer::new(&params, Default::default(), true)?;
+            let ranges: Vec<(f64, f64)> = (0..args.frames)
+                .into_par_iter()
+                .with_max_len(1)
+                .map(|k| {
+                    let s = heights_only.frame(time_of(k)).grid.stats();
+                    (s.min_m, s.max_m)
+                })
+                .collect();
+            let lo = ranges.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+            let hi = ranges.iter().map(|r| r.1).fold(f64::NEG_INFINITY, f64::max);
+            (
+                HeightMapping {
+                    min_m: lo,
+                    max_m: hi,
+                },
+                "min..max over all frames".to_string(),
+            )
+        }
+        (None, None) => (
+            HeightMapping {
+                min_m: 0.0,
+                max_m: 0.0,
+            },
+            "no 16-bit heights written".to_string(),
+        ),
+    };
+    let doc = SequenceDoc {
+        tool: "seasynth".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        frames: args.frames,
+        fps,
+        start_time_s: params.time_s,
+        loop_period_s: params.motion.loop_period_s,
+        files: kinds
+            .iter()
+            .map(|k| format!("frame_{{k}}.{}", k.suffix()))
+            .collect(),
+        mapping_min_m: mapping.min_m,
+        mapping_max_m: mapping.max_m,
+        mapping_source: source,
+        params: params.clone(),
+    };
+    Staged::create(&side_path)?.write_with(|w| {
+        serde_json::to_writer_pretty(&mut *w, &doc)?;
+        std::io::Write::write_all(w, b"\n")
+    })?;
+    let todo: Vec<usize> = (0..args.frames)
+        .filter(|&k| {
+            !args.resume
+                || !kinds
+                    .iter()
+                    .all(|&kind| frame_path(&args.dir, k, kind).is_file())
+        })
+        .collect();
+    let bar = if quiet || !std::io::stderr().is_terminal() {
+        indicatif::ProgressBar::hidden()
+    } else {
+        let b = indicatif::ProgressBar::new(todo.len() as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} frames, {per_sec}, ETA {eta}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    };
+    let cx_params = &params;
+    let write_frame = |k: usize| -> Result<(), Error> {
+        // Stage the frame's files first: a bad path fails before the work.
+        let mut staged = Vec::new();
+        for &kind in &kinds {
+            staged.push((kind, Staged::create(&frame_path(&args.dir, k, kind))?));
+        }
+        let syn: Synthesis = synth.frame(time_of(k));
+        for (kind, st) in staged {
+            match kind {
+                Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
+                Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
+                Kind::Map(m) => {
+                    let cx = MapContext {
+                        params: cx_params,
+                        synthesis: &syn,
+                    };
+                    maps::write_map(m, st, &cx)?
+                }
+            }
+        }
+        bar.inc(1);
+        Ok(())
+    };
+    for chunk in todo.chunks(jobs) {
+        let results: Vec<Result<(), Error>> = chunk
+            .par_iter()
+            .with_max_len(1)
+            .map(|&k| write_frame(k))
+            .collect();
+        for r in results {
+            r?;
+        }
+    }
+    bar.finish_and_clear();
+    if !quiet {
+        let secs = started.elapsed().as_secs_f64();
+        eprintln!(
+            "wrote {} frame(s) of {} to {} in {secs:.2} s ({:.2} frames/s), {} skipped; 16-bit mapping {:.4}..{:.4} m",
+            todo.len(),
+            args.frames,
+            args.dir.display(),
+            todo.len() as f64 / secs.max(1e-9),
+            args.frames - todo.len(),
+            mapping.min_m,
+            mapping.max_m
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,232 @@
+//! Maps of a wave state besides the height: tangent-space normals, foam, the Jacobian of
+//! the choppy displacement and the displacement itself. All are indexed by the
+//! undisplaced grid (sample (i, j) at x = i·dx, y = j·dy, row j = image row j), as a
+//! displacement-mapped mesh uses them.
+//!
+//! | output name | content |
+//! |---|---|
+//! | `NAME.normal.png` | 8-bit RGB normal map: (r, g, b) = round(255·(n + 1)/2) with n = (nx, ny, nz), nx along +x (image right), ny along +y (image row index increasing), nz up. This is the OpenGL (+Y, "green up") convention when the image is loaded with row 0 at v = 0, as OpenGL does; flip green for DirectX. |
+//! | `NAME.foam.png` | 16-bit gray foam coverage: round(65535·clamp((T − J)/T, 0, 1)) with T the foam threshold: 0 where J ≥ T, full where the surface folds (J ≤ 0) |
+//! | `NAME.jacobian.tif` | 32-bit float J (1: undisturbed, < 0: folded) |
+//! | `NAME.disp.tif` | 32-bit float RGB: (λDx, λDy, h) in meters, the vertex displacement of choppy waves |
+
+use std::io::{Seek, Write};
+
+use tiff::encoder::{TiffEncoder, colortype};
+
+use crate::grid::GridSpec;
+
+/// The kind of map an output name asks for (`NAME.KIND.ext`), if any.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MapKind {
+    Normal,
+    Foam,
+    Jacobian,
+    Displacement,
+}
+
+/// Map names: the inner extension and the outer extension it needs.
+pub const MAP_NAMES: &[(&str, &str, MapKind)] = &[
+    ("normal", "png", MapKind::Normal),
+    ("foam", "png", MapKind::Foam),
+    ("jacobian", "tif", MapKind::Jacobian),
+    ("disp", "tif", MapKind::Displacement),
+];
+
+impl MapKind {
+    /// The map `path` names (`x.normal.png` → Normal), or None for other names; an error
+    /// text when the inner name is a map's with the wrong outer extension.
+    pub fn from_path(path: &std::path::Path) -> Result<Option<MapKind>, String> {
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or_default()
+            .to_ascii_lowercase();
+        let mut parts = name.rsplitn(3, '.');
+        let (Some(ext), Some(inner), Some(_stem)) = (parts.next(), parts.next(), parts.next())
+        else {
+            return Ok(None);
+        };
+        for &(n, e, kind) in MAP_NAMES {
+            if inner == n {
+                return if ext == e || (e == "tif" && ext == "tiff") {
+                    Ok(Some(kind))
+                } else {
+                    Err(format!(
+                        "a .{n} map is written as .{n}.{e} (got .{n}.{ext})"
+                    ))
+                };
+            }
+        }
+        Ok(None)
+    }
+}
+
+/// What a wave-state map needs besides the state.
+pub struct MapContext<'a> {
+    pub params: &'a crate::config::Params,
+    pub synthesis: &'a crate::field::Synthesis,
+}
+
+/// The derived fields the given maps need.
+pub fn extras_for(kinds: &[MapKind]) -> crate::field::dynamics::Extras {
+    let mut e = crate::field::dynamics::Extras::default();
+    for k in kinds {
+        match k {
+            MapKind::Normal => {
+                e.slopes = true;
+                e.jacobian = true;
+            }
+            MapKind::Foam | MapKind::Jacobian => e.jacobian = true,
+            MapKind::Displacement => e.displacement = true,
+        }
+    }
+    e
+}
+
+/// Writes the map `kind` of a synthesis to `staged`.
+pub fn write_map(
+    kind: MapKind,
+    staged: super::Staged,
+    cx: &MapContext,
+) -> crate::error::Result<()> {
+    let syn = cx.synthesis;
+    let spec = syn.grid.spec;
+    let surf = &syn.surface;
+    let missing = || crate::error::Error::Output {
+        path: staged.path.clone(),
+        message: "the state has no such field".into(),
+    };
+    match kind {
+        MapKind::Normal => {
+            let slopes = surf.slopes.as_ref().ok_or_else(missing)?;
+            let normals = crate::field::dynamics::normals(slopes, None);
+            let rgb = normal_rgb(&normals);
+            staged.write_with(|w| write_rgb8(w, &spec, &rgb))
+        }
+        MapKind::Foam => {
+            let j = surf.jacobian.as_ref().ok_or_else(missing)?;
+            let t = cx.params.motion.foam_threshold;
+            let v: Vec<u16> = j.iter().map(|&j| foam_value(j, t)).collect();
+            staged.write_with(|w| write_gray16(w, &spec, &v))
+        }
+        MapKind::Jacobian => {
+            let j = surf.jacobian.as_ref().ok_or_else(missing)?;
+            staged.write_with(|w| write_f32(w, &spec, j))
+        }
+        MapKind::Displacement => {
+            let zero;
+            let [dx, dy] = match surf.displacement.as_ref() {
+                Some(d) => [&d[0], &d[1]],
+                None => {
+                    zero = vec![0.0f32; spec.len()];
+                    [&zero, &zero]
+                }
+            };
+            let h = surf.undisplaced_height.as_deref().unwrap_or(&syn.grid.data);
+            staged.write_with(|w| write_xyz_f32(w, &spec, dx, dy, h))
+        }
+    }
+}
+
+/// The 8-bit RGB bytes of a normal map.
+pub fn normal_rgb(normals: &[[f32; 3]]) -> Vec<u8> {
+    normals
+        .iter()
+        .flat_map(|n| n.map(|c| ((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0).round() as u8))
+        .collect()
+}
+
+/// Foam coverage in 0..=65535 from J and the threshold T.
+pub fn foam_value(j: f32, threshold: f64) -> u16 {
+    let f = ((threshold - j as f64) / threshold).clamp(0.0, 1.0);
+    (f * 65535.0).round() as u16
+}
+
+/// A 16-bit grayscale PNG of `values` (row-major, `spec.nx` wide).
+pub fn write_gray16<W: Write>(w: W, spec: &GridSpec, values: &[u16]) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(w, spec.nx as u32, spec.ny as u32);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Sixteen);
+    enc.set_compression(png::Compression::Fast);
+    enc.set_filter(png::Filter::Up);
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
+    writer
+        .write_image_data(&bytes)
+        .map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
+/// An 8-bit RGB PNG.
+pub fn write_rgb8<W: Write>(w: W, spec: &GridSpec, rgb: &[u8]) -> std::io::Result<()> {
+    let mut enc = png::Encoder::new(w, spec.nx as u32, spec.ny as u32);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_compression(png::Compression::Fast);
+    enc.set_filter(png::Filter::Up);
+    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(rgb)
+        .map_err(std::io::Error::other)?;
+    writer.finish().map_err(std::io::Error::other)
+}
+
+/// A one-channel f32 TIFF.
+pub fn write_f32<W: Write + Seek>(w: W, spec: &GridSpec, values: &[f32]) -> std::io::Result<()> {
+    let mut enc = TiffEncoder::new(w).map_err(std::io::Error::other)?;
+    enc.write_image::<colortype::Gray32Float>(spec.nx as u32, spec.ny as u32, values)
+        .map_err(std::io::Error::other)
+}
+
+/// A three-channel f32 TIFF of (x, y, z) per sample.
+pub fn write_xyz_f32<W: Write + Seek>(
+    w: W,
+    spec: &GridSpec,
+    x: &[f32],
+    y: &[f32],
+    z: &[f32],
+) -> std::io::Result<()> {
+    let data: Vec<f32> = x
+        .iter()
+        .zip(y)
+        .zip(z)
+        .flat_map(|((&a, &b), &c)| [a, b, c])
+        .collect();
+    let mut enc = TiffEncoder::new(w).map_err(std::io::Error::other)?;
+    enc.write_image::<colortype::RGB32Float>(spec.nx as u32, spec.ny as u32, &data)
+        .map_err(std::io::Error::other)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn map_names_follow_the_inner_extension() {
+        assert_eq!(
+            MapKind::from_path(Path::new("a/x.normal.png")),
+            Ok(Some(MapKind::Normal))
+        );
+        assert_eq!(
+            MapKind::from_path(Path::new("x.DISP.tiff")),
+            Ok(Some(MapKind::Displacement))
+        );
+        assert_eq!(MapKind::from_path(Path::new("x.png")), Ok(None));
+        assert_eq!(MapKind::from_path(Path::new("my.sea.png")), Ok(None));
+        let e = MapKind::from_path(Path::new("x.foam.tif")).unwrap_err();
+        assert!(e.contains(".foam.png"), "{e}");
+    }
+
+    #[test]
+    fn normals_and_foam_encode_their_documented_ranges() {
+        assert_eq!(normal_rgb(&[[0.0, 0.0, 1.0]]), vec![128, 128, 255]);
+        assert_eq!(normal_rgb(&[[-1.0, 1.0, 0.0]]), vec![0, 255, 128]);
+        assert_eq!(foam_value(1.0, 0.3), 0);
+        assert_eq!(foam_value(0.3, 0.3), 0);
+        assert_eq!(foam_value(0.25, 0.5), 32768);
+        assert_eq!(foam_value(-0.5, 0.3), 65535);
+    }
+}

@@ -1,0 +1,403 @@
+//! `seasynth render`: the command line turned into a field and [`RenderOptions`], the
+//! image rendered with a progress bar and written through a staged file.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::Result;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use super::camera::{Camera, View, triple};
+use super::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
+use super::{MAX_IMAGE_SIDE, MAX_SPP, RenderOptions, lighting_for, scene_of};
+use crate::cli::RenderArgs;
+use crate::config::Params;
+use crate::error::{Error, ParamError};
+use crate::export::Staged;
+use crate::grid::Grid;
+
+/// Renders with fewer rays than this show no progress bar.
+const PROGRESS_MIN_RAYS: u64 = 1 << 20;
+
+fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
+    ParamError {
+        name: name.to_string(),
+        allowed: allowed.to_string(),
+        got: got.to_string(),
+    }
+}
+
+/// A number of `flag`; `allowed` says what the flag takes, for the error.
+fn number(flag: &str, allowed: &str, s: &str) -> Result<f64, ParamError> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| err(flag, allowed, s))
+}
+
+/// `N` finite numbers separated by commas.
+fn numbers<const N: usize>(flag: &str, allowed: &str, s: &str) -> Result<[f64; N], ParamError> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != N {
+        return Err(err(flag, allowed, s));
+    }
+    let mut out = [0.0; N];
+    for (o, p) in out.iter_mut().zip(parts) {
+        *o = number(flag, allowed, p).map_err(|_| err(flag, allowed, s))?;
+    }
+    Ok(out)
+}
+
+/// `WxH` in pixels.
+fn image_size(s: &str) -> Result<(u32, u32), ParamError> {
+    let allowed = format!("WxH with each side from 1 to {MAX_IMAGE_SIDE} pixels");
+    let bad = || err("--image", &allowed, s);
+    let (w, h) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let side = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|v| (1..=MAX_IMAGE_SIDE).contains(v))
+    };
+    Ok((side(w).ok_or_else(bad)?, side(h).ok_or_else(bad)?))
+}
+
+/// The render flags, parsed and checked before any work.
+struct Request {
+    width: u32,
+    height: u32,
+    spp: u32,
+    view: View,
+    position: Option<[f64; 3]>,
+    camera_height: Option<f64>,
+    yaw_rad: Option<f64>,
+    pitch_rad: Option<f64>,
+    look_at: Option<[f64; 3]>,
+    fov_x_rad: Option<f64>,
+    sun: Option<[f64; 2]>,
+    haze_m: Option<f64>,
+    reflection: Option<Reflection>,
+    repeat: Option<bool>,
+    lod: bool,
+}
+
+impl Request {
+    fn parse(a: &RenderArgs) -> Result<Request, ParamError> {
+        let (width, height) = match &a.image {
+            Some(s) => image_size(s)?,
+            None => (1280, 720),
+        };
+        let spp = match &a.spp {
+            Some(s) => s
+                .trim()
+                .parse::<u32>()
+                .ok()
+                .filter(|v| (1..=MAX_SPP).contains(v))
+                .ok_or_else(|| err("--spp", &format!("a whole number from 1 to {MAX_SPP}"), s))?,
+            None => 4,
+        };
+        let view = match &a.view {
+            Some(s) => View::from_name(s)?,
+            None => View::Grazing,
+        };
+        let point = "three finite numbers X,Y,Z in meters";
+        let position = a
+            .camera
+            .as_deref()
+            .map(|s| numbers::<3>("--camera", point, s))
+            .transpose()?;
+        let camera_height = a
+            .camera_height
+            .as_deref()
+            .map(|s| number("--camera-height", "a finite number of meters", s))
+            .transpose()?;
+        let angle = |flag: &str, s: &Option<String>, lo: f64, hi: f64| {
+            let allowed = format!("an angle from {lo}° to {hi}°");
+            s.as_deref()
+                .map(|s| {
+                    number(flag, &allowed, s).and_then(|v| {
+                        (lo..=hi)
+                            .contains(&v)
+                            .then_some(v.to_radians())
+                            .ok_or_else(|| err(flag, &allowed, s))
+                    })
+                })
+                .transpose()
+        };
+        let yaw_rad = angle("--yaw", &a.yaw, -360.0, 360.0)?;
+        let pitch_rad = angle("--pitch", &a.pitch, -90.0, 90.0)?;
+        let look_at = a
+            .look_at
+            .as_deref()
+            .map(|s| numbers::<3>("--look-at", point, s))
+            .transpose()?;
+        if let Some(p) = look_at {
+            if yaw_rad.is_some() || pitch_rad.is_some() {
+                return Err(err(
+                    "--look-at",
+                    "given without --yaw and --pitch",
+                    triple(p),
+                ));
+            }
+        }
+        let fov_x_rad = match &a.fov {
+            Some(s) => {
+                let allowed = "an angle > 0° and < 180°";
+                let v = number("--fov", allowed, s)?;
+                if !(v > 0.0 && v < 180.0) {
+                    return Err(err("--fov", allowed, s));
+                }
+                Some(v.to_radians())
+            }
+            None => None,
+        };
+        let sun = match &a.sun {
+            Some(s) => {
+                let allowed = "AZ,EL in degrees, the elevation from -90 to 90";
+                let [az, el] = numbers::<2>("--sun", allowed, s)?;
+                if !(-90.0..=90.0).contains(&el) {
+                    return Err(err("--sun", allowed, s));
+                }
+                Some([az.to_radians(), el.to_radians()])
+            }
+            None => None,
+        };
+        let haze_m = match &a.haze {
+            Some(s) => {
+                let allowed = "a distance ≥ 0 m (0: no haze)";
+                let v = number("--haze", allowed, s)?;
+                if v < 0.0 {
+                    return Err(err("--haze", allowed, s));
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        let reflection = a.reflection.as_deref().map(parse_reflection).transpose()?;
+        let repeat = if a.repeat {
+            Some(true)
+        } else if a.no_repeat {
+            Some(false)
+        } else {
+            None
+        };
+        Ok(Request {
+            width,
+            height,
+            spp,
+            view,
+            position,
+            camera_height,
+            yaw_rad,
+            pitch_rad,
+            look_at,
+            fov_x_rad,
+            sun,
+            haze_m,
+            reflection,
+            repeat,
+            lod: !a.no_lod,
+        })
+    }
+
+    /// The camera: the view's, then the flags over it.
+    fn camera(&self, scene: &super::Scene) -> Result<Camera, ParamError> {
+        let fov = self.fov_x_rad.unwrap_or(self.view.fov_x_rad());
+        let mut c = self.view.camera(scene, self.width, self.height, fov);
+        if let Some(p) = self.position {
+            c.position_m = p;
+        }
+        if let Some(h) = self.camera_height {
+            c.position_m[2] = scene.mean_m + h;
+        }
+        if let Some(target) = self.look_at {
+            (c.yaw_rad, c.pitch_rad) = Camera::aim(c.position_m, target)?;
+        }
+        if let Some(y) = self.yaw_rad {
+            c.yaw_rad = y;
+        }
+        if let Some(p) = self.pitch_rad {
+            c.pitch_rad = p;
+        }
+        c.validate()?;
+        Ok(c)
+    }
+}
+
+fn parse_reflection(s: &str) -> Result<Reflection, ParamError> {
+    let allowed = "fresnel, pseudo or pseudo:C with C > 0";
+    match s.split_once(':') {
+        None if s == "fresnel" => Ok(Reflection::Fresnel { index: WATER_INDEX }),
+        None if s == "pseudo" => Ok(Reflection::Pseudo {
+            exponent: PSEUDO_EXPONENT,
+        }),
+        Some(("pseudo", c)) => {
+            let exponent = number("--reflection", allowed, c)?;
+            if exponent > 0.0 {
+                Ok(Reflection::Pseudo { exponent })
+            } else {
+                Err(err("--reflection", allowed, s))
+            }
+        }
+        _ => Err(err("--reflection", allowed, s)),
+    }
+}
+
+/// The field to render: read (`--from`) or synthesized, its wind direction (radians)
+/// and whether it is periodic.
+fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
+    let Some(from) = &args.from else {
+        let params = crate::app::resolve_params(&args.field)?;
+        let synthesis = crate::field::synthesize(&params)?;
+        return Ok((
+            synthesis.grid,
+            params.wind.direction_deg.to_radians(),
+            params.is_periodic(),
+        ));
+    };
+    let f = &args.field;
+    if let Some(flag) = f
+        .preset
+        .as_ref()
+        .map(|_| "--preset")
+        .or((!f.set.is_empty()).then_some("--set"))
+        .or(f.flags().first().map(|(k, _)| *k))
+    {
+        return Err(err(
+            "--from",
+            "given without field flags (the file is the field)",
+            format!("{} with {flag}", from.display()),
+        )
+        .into());
+    }
+    let (grid, sidecar) = crate::analyze::load(from)?;
+    let params: Option<Params> = sidecar
+        .as_ref()
+        .and_then(|d| d.get("params"))
+        .and_then(|v| serde_json::from_value(v.clone()).ok());
+    Ok(match params {
+        Some(p) => (grid, p.wind.direction_deg.to_radians(), p.is_periodic()),
+        None => (grid, 0.0, false),
+    })
+}
+
+/// Checks the output path (a `.png`) and stages it.
+fn stage_output(path: &Path) -> Result<Staged, Error> {
+    let png = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "previews are 8-bit RGB PNG images: the file name must end in .png".into(),
+        });
+    }
+    Staged::create(path)
+}
+
+/// Runs `seasynth render`.
+pub fn run(args: RenderArgs) -> Result<()> {
+    crate::app::set_threads(args.threads)?;
+    let req = Request::parse(&args).map_err(Error::from)?;
+    // The output is staged before any work: a bad path fails now, and an error later
+    // leaves no partial file.
+    let staged = stage_output(&args.output)?;
+    let (grid, wind_dir_rad, periodic) = field(&args)?;
+    let wrap = req.repeat.unwrap_or(periodic);
+    let scene = scene_of(&grid, wind_dir_rad, wrap);
+    let camera = req.camera(&scene).map_err(Error::from)?;
+    let mut lighting = lighting_for(&scene, &camera);
+    if let Some([az, el]) = req.sun {
+        lighting.sun_dir = sun_direction(az, el);
+    }
+    if let Some(h) = req.haze_m {
+        lighting.haze_distance_m = if h == 0.0 { f64::INFINITY } else { h };
+    }
+    if let Some(r) = req.reflection {
+        lighting.reflection = r;
+    }
+    let opts = RenderOptions {
+        width: req.width,
+        height: req.height,
+        spp: req.spp,
+        lighting,
+        repeat: req.repeat,
+        lod: req.lod,
+        ..RenderOptions::new(camera)
+    };
+    let rays = req.width as u64 * req.height as u64 * req.spp as u64;
+    let bar = if args.quiet || rays < PROGRESS_MIN_RAYS {
+        ProgressBar::hidden()
+    } else {
+        // Drawn only when stderr is a terminal.
+        let bar =
+            ProgressBar::with_draw_target(Some(req.height as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) =
+            ProgressStyle::with_template("rendering {bar:40} {pos}/{len} rows, {eta} left")
+        {
+            bar.set_style(style);
+        }
+        bar
+    };
+    let start = Instant::now();
+    let image = super::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    crate::export::rgb8::write(staged, &image.rgb, (image.width, image.height))?;
+    if !args.quiet {
+        let [x, y, z] = camera.position_m;
+        eprintln!(
+            "rendered {}×{} at {} rays per pixel in {seconds:.2} s ({:.2} M rays/s); camera at ({x:.1}, {y:.1}, {z:.1}) m, yaw {:.1}°, pitch {:.1}°, fov {:.1}°{}",
+            image.width,
+            image.height,
+            req.spp,
+            rays as f64 / seconds / 1e6,
+            camera.yaw_rad.to_degrees(),
+            camera.pitch_rad.to_degrees(),
+            camera.fov_x_rad.to_degrees(),
+            if wrap { ", field repeated" } else { "" },
+        );
+        eprintln!("wrote {}", args.output.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Method;
+
+    #[test]
+    fn sizes_and_lists_parse_or_name_the_flag() {
+        assert_eq!(image_size("640x360"), Ok((640, 360)));
+        assert_eq!(image_size("64×36"), Ok((64, 36)));
+        for bad in ["0x0", "640", "x", "640x-1", "99999x10"] {
+            assert_eq!(image_size(bad).unwrap_err().name, "--image", "{bad}");
+        }
+        assert_eq!(
+            numbers::<3>("--camera", "", "1,-2,3.5"),
+            Ok([1.0, -2.0, 3.5])
+        );
+        assert!(numbers::<3>("--camera", "", "1,2").is_err());
+        assert!(numbers::<3>("--camera", "", "1,nan,2").is_err());
+        assert_eq!(
+            parse_reflection("pseudo:0.5"),
+            Ok(Reflection::Pseudo { exponent: 0.5 })
+        );
+        assert!(parse_reflection("pseudo:-1").is_err());
+        assert!(parse_reflection("mirror").is_err());
+    }
+
+    #[test]
+    fn periodic_methods_are_recognized() {
+        let mut p = Params::default();
+        assert!(!p.is_periodic(), "the default hybrid ramps α along y");
+        p.method = Method::Fft;
+        assert!(p.is_periodic());
+        p.method = Method::Perlin;
+        p.perlin.tileable = false;
+        assert!(!p.is_periodic());
+    }
+}

@@ -1,0 +1,573 @@
+//! `seasynth render`: a shaded perspective preview of a height field.
+//!
+//! Rays are cast from a pinhole [`Camera`] through several points of every pixel
+//! (`spp`, a fixed stratified pattern) and intersected with the field's bilinear surface,
+//! skipping empty space with a max-height quadtree as in Mastin et al. (1987)
+//! ([`trace`], [`pyramid`]); far away the surface is low-passed to the ray's footprint by
+//! mean mip levels, so the horizon does not shimmer. Normals come from the slopes
+//! ∂h/∂x, ∂h/∂y: central differences of the samples, or exact slope arrays when the caller
+//! has them. Each hit is lit after Li, He & Gong (2015) with a Fresnel-weighted sky
+//! reflection ([`shade`]). A periodic field repeats to the horizon; any other sits in a
+//! flat sea at its mean height.
+//!
+//! Conventions are in [`camera`] (axes, yaw, pitch) and [`shade`] (colors). Every pixel is
+//! computed on its own by the same operations whatever the number of threads, so images
+//! are identical bytes for identical inputs.
+
+pub mod camera;
+pub mod command;
+pub mod pyramid;
+pub mod shade;
+pub mod trace;
+
+use rayon::prelude::*;
+
+pub use camera::{Camera, Projection, Scene, VIEWS, View};
+pub use shade::{HeightScale, Lighting, Reflection};
+
+use crate::error::{Error, ParamError};
+use crate::grid::Grid;
+use pyramid::{Pyramid, central_slopes};
+use trace::{Lod, Ray, Tracer};
+
+/// Largest image side, pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// Largest number of samples per pixel.
+pub const MAX_SPP: u32 = 256;
+
+/// What to render and how.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    pub camera: Camera,
+    /// Image size, pixels.
+    pub width: u32,
+    pub height: u32,
+    /// Rays per pixel (1 … 256), averaged in linear light.
+    pub spp: u32,
+    pub lighting: Lighting,
+    /// Repeat the field to the horizon; `None`: when it is periodic.
+    pub repeat: Option<bool>,
+    /// Low-pass the surface by the rays' footprint (mean mip levels); off, every ray sees
+    /// the full-resolution surface.
+    pub lod: bool,
+    /// Rays end here (they show the sky), meters.
+    pub max_distance_m: f64,
+}
+
+/// A rendered image: 8-bit sRGB, rows top to bottom, and the distance to the sea seen
+/// through each pixel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RgbImage {
+    pub width: u32,
+    pub height: u32,
+    /// `width`·`height`·3 bytes, R, G, B.
+    pub rgb: Vec<u8>,
+    /// Per pixel, the nearest hit among its rays, meters (infinite where every ray sees sky).
+    pub distance_m: Vec<f32>,
+}
+
+impl RgbImage {
+    /// The color of pixel (x, y).
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let k = 3 * (y as usize * self.width as usize + x as usize);
+        [self.rgb[k], self.rgb[k + 1], self.rgb[k + 2]]
+    }
+}
+
+fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
+    ParamError {
+        name: name.to_string(),
+        allowed: allowed.to_string(),
+        got: got.to_string(),
+    }
+}
+
+impl RenderOptions {
+    /// 1280×720, 4 rays per pixel, the default lighting, repeat when periodic, low-pass on.
+    pub fn new(camera: Camera) -> Self {
+        Self {
+            camera,
+            width: 1280,
+            height: 720,
+            spp: 4,
+            lighting: Lighting::default(),
+            repeat: None,
+            lod: true,
+            max_distance_m: f64::INFINITY,
+        }
+    }
+
+    /// The default preview of `field`: the grazing view down-wind (`wind_dir_rad`, from
+    /// +x toward +y), the lighting of [`lighting_for`].
+    pub fn preview(field: &Grid, wind_dir_rad: f64, periodic: bool) -> Self {
+        let scene = scene_of(field, wind_dir_rad, periodic);
+        let camera = View::Grazing.camera(&scene, 1280, 720, View::Grazing.fov_x_rad());
+        let mut o = Self::new(camera);
+        o.lighting = lighting_for(&scene, &camera);
+        o
+    }
+
+    /// Checks every value; names the flag at fault.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        self.camera.validate()?;
+        let sides = 1..=MAX_IMAGE_SIDE;
+        if !(sides.contains(&self.width) && sides.contains(&self.height)) {
+            return Err(err(
+                "--image",
+                &format!("WxH with each side from 1 to {MAX_IMAGE_SIDE} pixels"),
+                format!("{}x{}", self.width, self.height),
+            ));
+        }
+        if !(1..=MAX_SPP).contains(&self.spp) {
+            return Err(err("--spp", &format!("from 1 to {MAX_SPP}"), self.spp));
+        }
+        let l = &self.lighting;
+        if !l.sun_dir.iter().all(|v| v.is_finite()) {
+            return Err(err("--sun", "a finite azimuth and elevation", "NaN"));
+        }
+        if l.haze_distance_m.is_nan() || l.haze_distance_m < 0.0 {
+            return Err(err(
+                "--haze",
+                "a distance ≥ 0 m (0: no haze)",
+                l.haze_distance_m,
+            ));
+        }
+        match l.reflection {
+            Reflection::Fresnel { index } if !(index.is_finite() && index >= 1.0) => {
+                return Err(err("--reflection", "fresnel with an index ≥ 1", index));
+            }
+            Reflection::Pseudo { exponent } if !(exponent.is_finite() && exponent > 0.0) => {
+                return Err(err(
+                    "--reflection",
+                    "pseudo:C with a finite C > 0",
+                    exponent,
+                ));
+            }
+            _ => {}
+        }
+        if self.max_distance_m.is_nan() || self.max_distance_m <= 0.0 {
+            return Err(err("max distance", "> 0 m", self.max_distance_m));
+        }
+        Ok(())
+    }
+}
+
+/// What the views need to know of `field`.
+pub fn scene_of(field: &Grid, wind_dir_rad: f64, periodic: bool) -> Scene {
+    let s = field.spec;
+    let (cx, cy) = if periodic {
+        (s.nx, s.ny)
+    } else {
+        (s.nx.saturating_sub(1), s.ny.saturating_sub(1))
+    };
+    let stats = field.stats();
+    Scene {
+        size_m: [cx as f64 * s.dx_m(), cy as f64 * s.dy_m()],
+        mean_m: stats.mean_m,
+        max_m: stats.max_m,
+        hs_m: stats.hs_m,
+        wind_dir_rad,
+    }
+}
+
+/// The default lighting for a camera over `scene`: the sun 20° to the left of the look
+/// direction and 14° up, so its glitter lies on the sea ahead; haze at 4 field sizes or
+/// 10 camera heights, whichever is farther.
+pub fn lighting_for(scene: &Scene, camera: &Camera) -> Lighting {
+    let size = scene.size_m[0].max(scene.size_m[1]);
+    let height = camera.position_m[2] - scene.mean_m;
+    Lighting {
+        sun_dir: shade::sun_direction(camera.yaw_rad + 20f64.to_radians(), 14f64.to_radians()),
+        haze_distance_m: (4.0 * size).max(10.0 * height),
+        ..Lighting::default()
+    }
+}
+
+/// Sub-pixel offsets of `spp` rays, in [0, 1)²: a grid for a square number, else the
+/// rows of an n-rooks pattern with a golden-ratio stride. Fixed, so images are repeatable.
+pub fn sample_offsets(spp: u32) -> Vec<(f64, f64)> {
+    let n = spp.max(1) as usize;
+    let side = (n as f64).sqrt().round() as usize;
+    if side * side == n {
+        return (0..n)
+            .map(|k| {
+                (
+                    ((k % side) as f64 + 0.5) / side as f64,
+                    ((k / side) as f64 + 0.5) / side as f64,
+                )
+            })
+            .collect();
+    }
+    let mut stride = ((n as f64) * 0.618_033_988_749_895).round().max(1.0) as usize;
+    while gcd(stride, n) != 1 {
+        stride += 1;
+    }
+    (0..n)
+        .map(|k| {
+            (
+                (k as f64 + 0.5) / n as f64,
+                ((k * stride % n) as f64 + 0.5) / n as f64,
+            )
+        })
+        .collect()
+}
+
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
+}
+
+/// Renders `field` (heights in meters on its grid). `slopes`: exact ∂h/∂x and ∂h/∂y per
+/// sample, row-major like the field (`None`: central differences). `periodic`: sample N
+/// equals sample 0, so the field may repeat.
+pub fn render(
+    field: &Grid,
+    slopes: Option<(&[f32], &[f32])>,
+    periodic: bool,
+    opts: &RenderOptions,
+) -> Result<RgbImage, Error> {
+    render_with_progress(field, slopes, periodic, opts, &|_| {})
+}
+
+/// [`render`], calling `progress(rows)` as rows of the image are done (from any thread).
+pub fn render_with_progress(
+    field: &Grid,
+    slopes: Option<(&[f32], &[f32])>,
+    periodic: bool,
+    opts: &RenderOptions,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RgbImage, Error> {
+    opts.validate()?;
+    let (nx, ny) = (field.spec.nx, field.spec.ny);
+    if nx < 2 || ny < 2 {
+        return Err(err(
+            "the height field",
+            "at least 2×2 samples",
+            format!("{nx}×{ny}"),
+        )
+        .into());
+    }
+    let wrap = opts.repeat.unwrap_or(periodic);
+    let owned;
+    let (sx, sy) = match slopes {
+        Some((sx, sy)) => {
+            if sx.len() != nx * ny || sy.len() != nx * ny {
+                return Err(err(
+                    "the slope arrays",
+                    &format!("{} values each, one per sample", nx * ny),
+                    format!("{} and {}", sx.len(), sy.len()),
+                )
+                .into());
+            }
+            (sx, sy)
+        }
+        None => {
+            owned = central_slopes(field, wrap);
+            (owned.0.as_slice(), owned.1.as_slice())
+        }
+    };
+    let pyr = Pyramid::new(field, sx, sy, wrap);
+    check_above_surface(&pyr, &opts.camera)?;
+    let stats = field.stats();
+    let scale = HeightScale {
+        mean_m: stats.mean_m,
+        amplitude_m: (stats.max_m - stats.mean_m).max(stats.mean_m - stats.min_m),
+    };
+    let proj = Projection::new(&opts.camera, opts.width, opts.height);
+    let offsets = sample_offsets(opts.spp);
+    let lod = Lod {
+        angle_rad: if opts.lod {
+            proj.pixel_angle_rad() / (opts.spp as f64).sqrt()
+        } else {
+            0.0
+        },
+    };
+    let mut tracer = Tracer::new(&pyr, lod);
+    tracer.max_distance_m = opts.max_distance_m;
+    let (w, h) = (opts.width as usize, opts.height as usize);
+    let mut rgb = vec![0u8; w * h * 3];
+    let mut distance_m = vec![f32::INFINITY; w * h];
+    let light = &opts.lighting;
+    let inv = 1.0 / offsets.len() as f64;
+    rgb.par_chunks_mut(w * 3)
+        .zip(distance_m.par_chunks_mut(w))
+        .enumerate()
+        .for_each(|(y, (row, dist))| {
+            for x in 0..w {
+                let mut acc = [0.0f64; 3];
+                let mut nearest = f64::INFINITY;
+                for &(ox, oy) in &offsets {
+                    let dir = proj.direction(x as f64 + ox, y as f64 + oy);
+                    let ray = Ray {
+                        origin: proj.origin(),
+                        dir,
+                    };
+                    let c = match tracer.trace(&ray) {
+                        Some(hit) => {
+                            nearest = nearest.min(hit.t);
+                            light.sea(dir, hit.t, hit.height_m, hit.normal(), &scale)
+                        }
+                        None => light.background(dir),
+                    };
+                    for k in 0..3 {
+                        acc[k] += c[k];
+                    }
+                }
+                for k in 0..3 {
+                    row[3 * x + k] = shade::encode_srgb8(acc[k] * inv);
+                }
+                dist[x] = nearest as f32;
+            }
+            progress(1);
+        });
+    Ok(RgbImage {
+        width: opts.width,
+        height: opts.height,
+        rgb,
+        distance_m,
+    })
+}
+
+/// The height of the surface the tracer sees under (x, y): the field, its repeats, or the
+/// mean plane around a field that does not repeat.
+fn surface_under(pyr: &Pyramid, x: f64, y: f64) -> f64 {
+    let inside = |v: f64, cells: usize, d: f64| (0.0..=cells as f64 * d).contains(&v);
+    if pyr.wrap || (inside(x, pyr.cells_x, pyr.dx_m) && inside(y, pyr.cells_y, pyr.dy_m)) {
+        pyr.surface(0, x, y)[0]
+    } else {
+        pyr.mean_m
+    }
+}
+
+fn check_above_surface(pyr: &Pyramid, camera: &Camera) -> Result<(), ParamError> {
+    let [x, y, z] = camera.position_m;
+    let s = surface_under(pyr, x, y);
+    if z > s {
+        Ok(())
+    } else {
+        Err(err(
+            "--camera",
+            &format!("above the sea surface, which is at z = {s:.3} m under x = {x} m, y = {y} m"),
+            format!("z = {z:.3} m"),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::GridSpec;
+
+    fn flat(n: usize, extent: f64) -> Grid {
+        Grid::zeros(GridSpec::new(n, n, extent, extent))
+    }
+
+    fn level_camera(z: f64, pitch_deg: f64) -> Camera {
+        Camera {
+            position_m: [10.0, 20.0, z],
+            yaw_rad: 0.4,
+            pitch_rad: pitch_deg.to_radians(),
+            fov_x_rad: 60f64.to_radians(),
+        }
+    }
+
+    /// Options without sun, spray or haze, so the sea is the height color and the sky.
+    fn plain(camera: Camera, w: u32, h: u32) -> RenderOptions {
+        RenderOptions {
+            width: w,
+            height: h,
+            lighting: Lighting {
+                sun_dir: shade::sun_direction(0.0, -0.5),
+                haze_distance_m: f64::INFINITY,
+                ..Lighting::default()
+            },
+            ..RenderOptions::new(camera)
+        }
+    }
+
+    /// First row whose pixel at column `x` sees the sea.
+    fn horizon_row(img: &RgbImage, x: u32) -> u32 {
+        (0..img.height)
+            .find(|&y| img.distance_m[(y * img.width + x) as usize].is_finite())
+            .expect("some row sees the sea")
+    }
+
+    #[test]
+    fn a_flat_sea_shows_the_horizon_where_geometry_says_and_reflects_the_sky() {
+        const W: u32 = 160;
+        const H: u32 = 90;
+        // The horizon of an infinite plane seen level: the image's center row, ± 1 px.
+        const HORIZON_TOL_PX: i64 = 1;
+        // 8-bit sRGB steps between the pixel and the color computed at its center.
+        const COLOR_TOL: i32 = 2;
+        for (periodic, repeat) in [(true, None), (false, None), (true, Some(false))] {
+            let field = flat(32, 32.0);
+            for pitch in [0.0, -10.0] {
+                let cam = level_camera(3.0, pitch);
+                let mut opts = plain(cam, W, H);
+                opts.repeat = repeat;
+                let img = render(&field, None, periodic, &opts).unwrap();
+                let proj = Projection::new(&cam, W, H);
+                // Pitched down by p, the horizon rises by focal·tan(p) pixels.
+                let expected = H as f64 / 2.0 - proj.focal_px() * (-pitch.to_radians()).tan();
+                let got = horizon_row(&img, W / 2) as i64;
+                assert!(
+                    (got - expected.round() as i64).abs() <= HORIZON_TOL_PX,
+                    "periodic {periodic}, repeat {repeat:?}, pitch {pitch}: horizon at row {got}, expected {expected}"
+                );
+                // Below it: the Fresnel-weighted mix of the middle height color and the sky
+                // in the mirror direction.
+                let l = &opts.lighting;
+                for y in [got as u32 + 3, (got as u32 + H) / 2, H - 1] {
+                    for x in [0, W / 3, W - 1] {
+                        let d = proj.direction(x as f64 + 0.5, y as f64 + 0.5);
+                        let cos_v = -d[2];
+                        let f0 = ((1.33f64 - 1.0) / (1.33 + 1.0)).powi(2);
+                        let fresnel = f0 + (1.0 - f0) * (1.0 - cos_v).powi(5);
+                        let water = [0, 1, 2].map(|k| 0.5 * (l.deep_color[k] + l.crest_color[k]));
+                        let sky = l.sky([d[0], d[1], -d[2]]);
+                        let want = [0, 1, 2].map(|k| {
+                            shade::encode_srgb8((1.0 - fresnel) * water[k] + fresnel * sky[k])
+                        });
+                        let px = img.pixel(x, y);
+                        for k in 0..3 {
+                            assert!(
+                                (px[k] as i32 - want[k] as i32).abs() <= COLOR_TOL,
+                                "pixel ({x}, {y}): {px:?}, expected {want:?}"
+                            );
+                        }
+                    }
+                }
+                // Above it: the sky.
+                let y = (got - 5).max(0) as u32;
+                let d = proj.direction(W as f64 / 2.0 + 0.5, y as f64 + 0.5);
+                let sky = l.sky(d).map(shade::encode_srgb8);
+                let px = img.pixel(W / 2, y);
+                assert!((0..3).all(|k| (px[k] as i32 - sky[k] as i32).abs() <= COLOR_TOL));
+            }
+        }
+    }
+
+    #[test]
+    fn images_do_not_depend_on_the_thread_count() {
+        let spec = GridSpec::new(64, 64, 64.0, 64.0);
+        let field = Grid::new(
+            spec,
+            (0..64 * 64)
+                .map(|k| ((k % 64) as f32 * 0.3).sin() + ((k / 64) as f32 * 0.2).cos())
+                .collect(),
+        );
+        let cam = Camera {
+            position_m: [0.0, 10.0, 6.0],
+            yaw_rad: 0.2,
+            pitch_rad: -0.15,
+            fov_x_rad: 1.0,
+        };
+        let opts = RenderOptions {
+            width: 96,
+            height: 54,
+            ..RenderOptions::new(cam)
+        };
+        let run = |threads| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| render(&field, None, true, &opts).unwrap())
+        };
+        let one = run(1);
+        let two = run(2);
+        assert!(one == two, "1 and 2 threads give different images");
+        // Not a blank image: sea and sky both present.
+        assert!(one.distance_m.iter().any(|d| d.is_finite()));
+        assert!(one.distance_m.iter().any(|d| d.is_infinite()));
+    }
+
+    #[test]
+    fn a_camera_under_the_surface_is_refused() {
+        let spec = GridSpec::new(16, 16, 16.0, 16.0);
+        let field = Grid::new(spec, vec![2.0; 256]);
+        let opts = RenderOptions::new(level_camera(1.0, 0.0));
+        let e = render(&field, None, true, &opts).unwrap_err();
+        assert!(e.is_usage(), "{e}");
+        let msg = e.to_string();
+        assert!(
+            msg.contains("--camera") && msg.contains("z = 2.000 m"),
+            "{msg}"
+        );
+        // Outside a field that does not repeat, the surface is the mean plane (2 m too).
+        let far = RenderOptions::new(Camera {
+            position_m: [-50.0, -50.0, 1.5],
+            ..level_camera(1.0, 0.0)
+        });
+        assert!(render(&field, None, false, &far).is_err());
+    }
+
+    #[test]
+    fn exact_slopes_replace_the_central_differences() {
+        // A flat field given tilted slopes: the normals, so the colors, follow the slopes.
+        let field = flat(16, 16.0);
+        let cam = level_camera(3.0, -30.0);
+        let opts = plain(cam, 32, 18);
+        let sx = vec![0.3f32; 256];
+        let sy = vec![0.0f32; 256];
+        let a = render(&field, None, true, &opts).unwrap();
+        let b = render(&field, Some((&sx, &sy)), true, &opts).unwrap();
+        assert_eq!(a.distance_m, b.distance_m, "the geometry is the same");
+        assert_ne!(a.rgb, b.rgb, "the shading is not");
+        let short = vec![0.0f32; 10];
+        assert!(render(&field, Some((&short, &sy)), true, &opts).is_err());
+    }
+
+    #[test]
+    fn sample_patterns_are_stratified() {
+        assert_eq!(sample_offsets(1), vec![(0.5, 0.5)]);
+        assert_eq!(
+            sample_offsets(4),
+            vec![(0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)]
+        );
+        for n in [2u32, 3, 5, 6, 8, 12] {
+            let s = sample_offsets(n);
+            assert_eq!(s.len(), n as usize);
+            // n-rooks: one sample in each column and each row of an n×n grid.
+            let mut rows: Vec<usize> = s.iter().map(|p| (p.1 * n as f64) as usize).collect();
+            rows.sort();
+            assert_eq!(rows, (0..n as usize).collect::<Vec<_>>(), "spp {n}");
+        }
+    }
+
+    #[test]
+    fn bad_options_name_the_flag() {
+        let cam = level_camera(3.0, 0.0);
+        let cases = [
+            (
+                RenderOptions {
+                    width: 0,
+                    height: 0,
+                    ..RenderOptions::new(cam)
+                },
+                "--image",
+            ),
+            (
+                RenderOptions {
+                    spp: 0,
+                    ..RenderOptions::new(cam)
+                },
+                "--spp",
+            ),
+            (
+                RenderOptions {
+                    camera: Camera {
+                        fov_x_rad: 0.0,
+                        ..cam
+                    },
+                    ..RenderOptions::new(cam)
+                },
+                "--fov",
+            ),
+        ];
+        for (o, flag) in cases {
+            let e = o.validate().unwrap_err();
+            assert_eq!(e.name, flag, "{e}");
+        }
+    }
+}

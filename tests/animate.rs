@@ -1,0 +1,198 @@
+//! `seasynth animate`: frames equal `generate --time`, loops repeat exactly, one mapping
+//! for the sequence, resume, and bad arguments.
+
+mod common;
+
+use common::{json_file, num, read, run_ok, run_rejected};
+use seasynth::export::{HeightMapping, png16, tiff32};
+
+const SEA: &[&str] = &[
+    "--method",
+    "fft",
+    "--spectrum",
+    "jonswap",
+    "--wind-speed",
+    "12",
+    "--fetch-km",
+    "40",
+    "--size",
+    "64",
+    "--extent",
+    "200",
+    "--fps",
+    "10",
+];
+
+fn args<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut v: Vec<&str> = vec!["animate"];
+    v.extend(SEA);
+    v.extend(extra);
+    v
+}
+
+#[test]
+fn frame_k_equals_generate_at_k_over_fps_bit_for_bit_and_choppy_maps_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    run_ok(
+        dir.path(),
+        &args(&[
+            "--frames",
+            "4",
+            "--choppiness",
+            "0.7",
+            "--format",
+            "tif,png,normal,foam,jacobian,disp",
+            "-o",
+            "seq",
+            "-q",
+        ]),
+    );
+    for k in [0usize, 3] {
+        let t = format!("{}", k as f64 / 10.0);
+        let mut g = vec!["generate"];
+        g.extend(SEA);
+        g.extend(["--choppiness", "0.7", "--time", &t, "-o", "g.tif", "-q"]);
+        run_ok(dir.path(), &g);
+        assert_eq!(
+            read(&dir.path().join("g.tif")),
+            read(&dir.path().join(format!("seq/frame_{k:05}.tif"))),
+            "frame {k} differs from generate --time {t}"
+        );
+    }
+    for suffix in ["png", "normal.png", "foam.png", "jacobian.tif", "disp.tif"] {
+        assert!(
+            dir.path()
+                .join(format!("seq/frame_00002.{suffix}"))
+                .is_file()
+        );
+    }
+    // The displacement map's z is the undisplaced height; the Jacobian is finite and
+    // below 1 somewhere (crests compress the surface).
+    let (w, h, j) = tiff32::read(&dir.path().join("seq/frame_00002.jacobian.tif")).unwrap();
+    assert_eq!((w, h), (64, 64));
+    assert!(j.iter().all(|v| v.is_finite()));
+    assert!(j.iter().any(|&v| v < 0.99) && j.iter().any(|&v| v > 1.01));
+}
+
+#[test]
+fn a_loop_repeats_after_its_period_and_one_mapping_serves_every_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    // T = 1.5 s at 10 fps: frame 15 is frame 0 again.
+    run_ok(
+        dir.path(),
+        &args(&[
+            "--frames",
+            "16",
+            "--loop-period",
+            "1.5",
+            "--format",
+            "tif,png",
+            "-o",
+            "loop",
+            "-q",
+        ]),
+    );
+    let f = |k: usize| tiff32::read(&dir.path().join(format!("loop/frame_{k:05}.tif"))).unwrap();
+    let (a, b, c) = (f(0).2, f(15).2, f(7).2);
+    const LOOP_TOL_M: f32 = 1e-5;
+    let worst = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f32::max);
+    assert!(
+        worst <= LOOP_TOL_M,
+        "frame 15 differs from frame 0 by {worst} m"
+    );
+    assert!(
+        a.iter().zip(&c).any(|(x, y)| (x - y).abs() > 0.01),
+        "the sea moves"
+    );
+    let side = json_file(&dir.path().join("loop/sequence.json"));
+    let mapping = HeightMapping {
+        min_m: num(&side, "/mapping_min_m"),
+        max_m: num(&side, "/mapping_max_m"),
+    };
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..16 {
+        let (_, _, t) = f(k);
+        let (_, _, p) = png16::read(&dir.path().join(format!("loop/frame_{k:05}.png"))).unwrap();
+        for (&m, &v) in t.iter().zip(&p) {
+            lo = lo.min(m as f64);
+            hi = hi.max(m as f64);
+            assert!((mapping.decode(v) - m as f64).abs() <= mapping.step_m());
+        }
+    }
+    assert_eq!(
+        (lo, hi),
+        (mapping.min_m, mapping.max_m),
+        "the range of all frames"
+    );
+}
+
+#[test]
+fn resume_redoes_only_missing_frames_and_gives_the_same_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = args(&["--frames", "5", "--format", "png,tif", "-o", "r"]);
+    run_ok(dir.path(), &a);
+    let before: Vec<Vec<u8>> = (0..5)
+        .map(|k| read(&dir.path().join(format!("r/frame_{k:05}.png"))))
+        .collect();
+    std::fs::remove_file(dir.path().join("r/frame_00002.png")).unwrap();
+    let mut again = a.clone();
+    again.push("--resume");
+    let out = common::seasynth()
+        .current_dir(dir.path())
+        .args(&again)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let msg = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        msg.contains("wrote 1 frame(s) of 5") && msg.contains("4 skipped"),
+        "{msg}"
+    );
+    for (k, b) in before.iter().enumerate() {
+        assert_eq!(
+            &read(&dir.path().join(format!("r/frame_{k:05}.png"))),
+            b,
+            "frame {k}"
+        );
+    }
+    // Another sequence in the same folder is refused.
+    let mut other = args(&[
+        "--frames", "5", "--format", "png,tif", "-o", "r", "--resume",
+    ]);
+    other.extend(["--seed", "9"]);
+    run_rejected(dir.path(), &other, &["sequence.json", "--resume"]);
+}
+
+#[test]
+fn bad_animation_arguments_are_one_line_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    run_rejected(
+        dir.path(),
+        &args(&["--frames", "0", "-o", "x"]),
+        &["--frames", "0"],
+    );
+    run_rejected(
+        dir.path(),
+        &args(&["--format", "png,gif", "-o", "x"]),
+        &["--format", "gif"],
+    );
+    run_rejected(
+        dir.path(),
+        &args(&["--loop-period", "-2", "-o", "x"]),
+        &["--loop-period", "-2"],
+    );
+    run_rejected(
+        dir.path(),
+        &["animate", "--method", "fft", "--fps", "0", "-o", "x"],
+        &["--fps"],
+    );
+    run_rejected(
+        dir.path(),
+        &args(&["--choppiness", "nan", "-o", "x"]),
+        &["--choppiness"],
+    );
+}
