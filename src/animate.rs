@@ -33,7 +33,8 @@ pub struct AnimateArgs {
     /// Output folder (created if missing)
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub dir: PathBuf,
-    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp
+    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp,
+    /// preview (a rendered view)
     #[arg(long, value_delimiter = ',', default_value = "png")]
     pub format: Vec<String>,
     /// Skip frames whose files are all there (files appear only when complete)
@@ -56,6 +57,8 @@ enum Kind {
     Png,
     Tif,
     Map(MapKind),
+    /// A rendered perspective view (`seasynth render`'s default camera).
+    Preview,
 }
 
 impl Kind {
@@ -67,10 +70,11 @@ impl Kind {
             "foam" => Kind::Map(MapKind::Foam),
             "jacobian" => Kind::Map(MapKind::Jacobian),
             "disp" => Kind::Map(MapKind::Displacement),
+            "preview" => Kind::Preview,
             other => {
                 return Err(ParamError {
                     name: "--format".into(),
-                    allowed: "png, tif, normal, foam, jacobian or disp".into(),
+                    allowed: "png, tif, normal, foam, jacobian, disp or preview".into(),
                     got: other.into(),
                 });
             }
@@ -85,6 +89,7 @@ impl Kind {
             Kind::Map(MapKind::Foam) => "foam.png",
             Kind::Map(MapKind::Jacobian) => "jacobian.tif",
             Kind::Map(MapKind::Displacement) => "disp.tif",
+            Kind::Preview => "preview.png",
         }
     }
 }
@@ -282,6 +287,16 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
                 Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
+                Kind::Preview => {
+                    let periodic = cx_params.is_periodic();
+                    let opts = crate::render::RenderOptions::preview(
+                        &syn.grid,
+                        cx_params.wind.direction_deg.to_radians(),
+                        periodic,
+                    );
+                    let img = crate::render::render(&syn.grid, None, periodic, &opts)?;
+                    crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
+                }
                 Kind::Map(m) => {
                     let cx = MapContext {
                         params: cx_params,

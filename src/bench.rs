@@ -161,6 +161,34 @@ pub fn run(args: BenchArgs) -> Result<()> {
             "  of which: PM×Hasselmann model",
             time(repeats, || field::spectrum_model(&sea_params)),
         ));
+        let mut fft_params = sea_params.clone();
+        fft_params.method = crate::config::Method::Fft;
+        let heights = field::Synthesizer::new(&fft_params, Default::default(), true)?;
+        rows.push((
+            "animation frame: height",
+            time(repeats, || heights.frame(1.0)),
+        ));
+        let mut choppy = fft_params.clone();
+        choppy.motion.choppiness = 0.8;
+        let all = field::dynamics::Extras {
+            slopes: true,
+            displacement: true,
+            jacobian: true,
+        };
+        let choppy_heights = field::Synthesizer::new(&choppy, Default::default(), true)?;
+        rows.push((
+            "animation frame: choppy height λ=0.8",
+            time(repeats, || choppy_heights.frame(1.0)),
+        ));
+        let full = field::Synthesizer::new(&choppy, all, true)?;
+        rows.push((
+            "  + normals, foam, displacement",
+            time(repeats, || {
+                let f = full.frame(1.0);
+                let slopes = f.surface.slopes.as_ref().expect("asked for");
+                (field::dynamics::normals(slopes, None), f)
+            }),
+        ));
         let plan = fft::InverseFft2::new(n, n);
         let template = fft::synthesize_spectrum(&setup);
         let fft_time = median(

@@ -25,7 +25,7 @@
 //! The displaced surface is (x0 + λD(x0), h(x0)). Its height at a grid point x is h(x0)
 //! with x0 solving x0 + λD(x0) = x, found by the fixed-point iteration
 //! x0 ← x − λD(x0) (bilinear, periodic interpolation of D; at most `CHOPPY_ITERATIONS`
-//! steps, fewer once a step moves x0 by less than 1e-6 of a sample; it converges wherever
+//! steps, fewer once a step moves x0 by less than 1e-4 of a sample; it converges wherever
 //! the surface does not fold, λ|∂D| < 1), then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
 //! (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
@@ -37,8 +37,9 @@ use crate::grid::GridSpec;
 
 /// Largest number of fixed-point steps of the choppy resampling …
 pub const CHOPPY_ITERATIONS: usize = 8;
-/// … which stops early once a step moves the point less than this, in samples.
-const CHOPPY_CONVERGED: f64 = 1e-6;
+/// … which stops early once a step moves the point less than this, in samples (a height
+/// error below 1e-4·dx·|slope|).
+const CHOPPY_CONVERGED: f64 = 1e-4;
 
 /// A derived field: the factor that multiplies h̃(k).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -234,24 +235,46 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
     let (nx, ny) = (spec.nx, spec.ny);
     let (sx, sy) = (1.0 / spec.dx_m(), 1.0 / spec.dy_m());
     let mut out = vec![0.0f32; nx * ny];
+    const LANES: usize = 4;
     out.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-        for (i, o) in row.iter_mut().enumerate() {
-            // In sample units: x = i, y = j.
-            let (x, y) = (i as f64, j as f64);
-            let (mut x0, mut y0) = (x, y);
+        // LANES points at a time: their iterations are independent, so the processor
+        // overlaps their memory loads.
+        for (c, chunk) in row.chunks_mut(LANES).enumerate() {
+            let y = j as f64;
+            let mut x = [0.0; LANES];
+            let mut x0 = [0.0; LANES];
+            let mut y0 = [0.0; LANES];
+            let mut done = [true; LANES];
+            for l in 0..chunk.len() {
+                let i = c * LANES + l;
+                let p = j * nx + i;
+                x[l] = i as f64;
+                // First guess: the displacement at the grid point itself.
+                x0[l] = x[l] - displacement[0][p] as f64 * sx;
+                y0[l] = y - displacement[1][p] as f64 * sy;
+                done[l] = false;
+            }
             for _ in 0..CHOPPY_ITERATIONS {
-                let c = Cell::new(nx, ny, x0, y0);
-                let (nx0, ny0) = (
-                    x - c.of(&displacement[0]) * sx,
-                    y - c.of(&displacement[1]) * sy,
-                );
-                let step = (nx0 - x0).abs().max((ny0 - y0).abs());
-                (x0, y0) = (nx0, ny0);
-                if step < CHOPPY_CONVERGED {
+                if done.iter().all(|&d| d) {
                     break;
                 }
+                for l in 0..LANES {
+                    if done[l] {
+                        continue;
+                    }
+                    let cell = Cell::new(nx, ny, x0[l], y0[l]);
+                    let (nx0, ny0) = (
+                        x[l] - cell.of(&displacement[0]) * sx,
+                        y - cell.of(&displacement[1]) * sy,
+                    );
+                    let step = (nx0 - x0[l]).abs().max((ny0 - y0[l]).abs());
+                    (x0[l], y0[l]) = (nx0, ny0);
+                    done[l] = step < CHOPPY_CONVERGED;
+                }
             }
-            *o = Cell::new(nx, ny, x0, y0).of(h) as f32;
+            for (l, o) in chunk.iter_mut().enumerate() {
+                *o = Cell::new(nx, ny, x0[l], y0[l]).of(h) as f32;
+            }
         }
     });
     out
@@ -307,25 +330,8 @@ pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::field::fft::{SpectrumSetup, synthesize_spectrum};
+    use crate::field::fft::{OneComponent, SpectrumSetup, synthesize_spectrum};
     use crate::spectrum::{Dispersion, Phillips, Spectrum};
-
-    /// Energy at one wavevector pair ±k only (index (n, m)), amplitude A of the cosine.
-    struct OneComponent {
-        k: (f64, f64),
-        variance: f64,
-    }
-
-    impl Spectrum for OneComponent {
-        fn amplitude_variance(&self, kx: f64, ky: f64, _: f64, _: f64) -> f64 {
-            let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
-            if close(kx, self.k.0) && close(ky, self.k.1) {
-                self.variance
-            } else {
-                0.0
-            }
-        }
-    }
 
     fn setup(spec: GridSpec, s: &dyn Spectrum, t: f64) -> SpectrumSetup<'_> {
         SpectrumSetup {

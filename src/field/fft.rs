@@ -510,27 +510,29 @@ pub fn fft_field(setup: &SpectrumSetup) -> (Grid, f64) {
     (Grid::new(setup.spec, data), h0max)
 }
 
+/// A spectrum with energy at the wavevector `k` only (E|h̃0(k)|² = `variance`), for tests.
+#[cfg(test)]
+pub(crate) struct OneComponent {
+    pub k: (f64, f64),
+    pub variance: f64,
+}
+
+#[cfg(test)]
+impl Spectrum for OneComponent {
+    fn amplitude_variance(&self, kx: f64, ky: f64, _: f64, _: f64) -> f64 {
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        if close(kx, self.k.0) && close(ky, self.k.1) {
+            self.variance
+        } else {
+            0.0
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::spectrum::Phillips;
-
-    /// A spectrum with energy at one wavevector pair ±k only.
-    struct OneComponent {
-        k: (f64, f64),
-        variance: f64,
-    }
-
-    impl Spectrum for OneComponent {
-        fn amplitude_variance(&self, kx: f64, ky: f64, _: f64, _: f64) -> f64 {
-            let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
-            if close(kx, self.k.0) && close(ky, self.k.1) {
-                self.variance
-            } else {
-                0.0
-            }
-        }
-    }
 
     fn phillips_setup(
         spec: GridSpec,
