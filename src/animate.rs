@@ -181,7 +181,9 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         }
         .into());
     }
-    let synth = Synthesizer::new(&params, maps::extras_for(&map_kinds), true)?;
+    let mut extras = maps::extras_for(&map_kinds);
+    extras.slopes |= kinds.contains(&Kind::Preview);
+    let synth = Synthesizer::new(&params, extras, true)?;
     let jobs = args.jobs.unwrap_or_else(|| {
         let by_memory = available_memory()
             .map(|m| (m / 2 / frame_bytes(&params, &kinds).max(1)).max(1) as usize)
@@ -288,13 +290,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
                 Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
                 Kind::Preview => {
-                    let periodic = cx_params.is_periodic();
-                    let opts = crate::render::RenderOptions::preview(
-                        &syn.grid,
-                        cx_params.wind.direction_deg.to_radians(),
-                        periodic,
-                    );
-                    let img = crate::render::render(&syn.grid, None, periodic, &opts)?;
+                    let img = crate::render::command::preview_of(cx_params, &syn)?;
                     crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
                 }
                 Kind::Map(m) => {

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use crate::cli::{Cli, Command, FieldArgs, GenerateArgs};
 use crate::config::layers::{self, Assignment};
-use crate::config::{Method, Params, presets};
+use crate::config::{Params, presets};
 use crate::error::Error;
 use crate::export::maps::{self, MapContext, MapKind};
 use crate::export::mesh;
@@ -182,8 +182,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
     let kinds: Vec<MapKind> = staged_maps.iter().filter_map(|(_, k)| *k).collect();
     let mut extras = maps::extras_for(&kinds);
     // Meshes take exact spectral slopes where the field is one spectrum and not resampled.
-    let exact_slopes = matches!(params.method, Method::Fft | Method::FilteredNoise)
-        && params.motion.choppiness == 0.0;
+    let exact_slopes = crate::render::command::exact_slopes_apply(&params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
     let synthesis = field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
@@ -304,18 +303,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
                 maps::write_map(kind, staged, &cx)?;
             }
             None => {
-                let opts = crate::render::RenderOptions::preview(
-                    grid,
-                    params.wind.direction_deg.to_radians(),
-                    periodic,
-                );
-                let slopes = synthesis
-                    .surface
-                    .slopes
-                    .as_ref()
-                    .filter(|_| exact_slopes)
-                    .map(|[x, y]| (&x[..], &y[..]));
-                let img = crate::render::render(grid, slopes, periodic, &opts)?;
+                let img = crate::render::command::preview_of(&params, &synthesis)?;
                 export::rgb8::write(staged, &img.rgb, (img.width, img.height))?;
             }
         }

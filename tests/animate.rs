@@ -196,3 +196,38 @@ fn bad_animation_arguments_are_one_line_errors() {
         &["--choppiness"],
     );
 }
+
+#[test]
+fn preview_frames_and_generate_previews_are_rgb_images_of_the_default_view() {
+    let dir = tempfile::tempdir().unwrap();
+    run_ok(
+        dir.path(),
+        &args(&["--frames", "2", "--format", "preview", "-o", "p", "-q"]),
+    );
+    let mut g = vec!["generate"];
+    g.extend(SEA);
+    g.extend(["--time", "0.1", "-o", "one.preview.png", "-q"]);
+    run_ok(dir.path(), &g);
+    for f in [
+        "p/frame_00000.preview.png",
+        "p/frame_00001.preview.png",
+        "one.preview.png",
+    ] {
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(dir.path().join(f)).unwrap(),
+        ));
+        let reader = decoder.read_info().unwrap();
+        let info = reader.info();
+        assert_eq!((info.width, info.height), (1280, 720), "{f}");
+        assert_eq!(info.color_type, png::ColorType::Rgb, "{f}");
+    }
+    // Frame 1 is generate --time 0.1: the same field, so the same picture.
+    assert_eq!(
+        read(&dir.path().join("p/frame_00001.preview.png")),
+        read(&dir.path().join("one.preview.png"))
+    );
+    assert_ne!(
+        read(&dir.path().join("p/frame_00000.preview.png")),
+        read(&dir.path().join("p/frame_00001.preview.png"))
+    );
+}
