@@ -414,6 +414,7 @@ mod tests {
         }
         // Bilinear interpolation of a wave sampled 85 times per wavelength.
         const TROCHOID_TOL: f64 = 2e-3;
+        eprintln!("choppy height vs trochoid: {worst:.2e} of A");
         assert!(worst < TROCHOID_TOL, "trochoid mismatch {worst:.2e} of A");
         // λ > 0: crests sharper and troughs flatter. The trochoid is above its mean level
         // where |kx0 + φ| < π/2, i.e. over π/k − 2λA of each wavelength 2π/k.
@@ -493,6 +494,11 @@ mod tests {
         // The small-wave cutoff (0.5 m) leaves little energy near the grid scale (0.25 m), so
         // central differences agree to a few percent of the slope.
         const FD_REL_TOL: f64 = 0.05;
+        eprintln!(
+            "spectral vs central-difference slopes: {:.2e}, {:.2e} of the RMS slope",
+            diff(&sx, &cx) / rms(&sx),
+            diff(&sy, &cy) / rms(&sy)
+        );
         assert!(
             diff(&sx, &cx) < FD_REL_TOL * rms(&sx),
             "x: {}",
@@ -516,6 +522,10 @@ mod tests {
             }
         }
         const INTEGRAL_TOL: f64 = 0.03;
+        eprintln!(
+            "integrated slope vs height: {worst:.2e} m (height RMS {:.3} m)",
+            rms(&h)
+        );
         assert!(
             worst < INTEGRAL_TOL * rms(&h) * 4.0,
             "integral off by {worst}"
