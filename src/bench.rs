@@ -204,7 +204,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 })
                 .collect(),
         );
-        rows.push(("inverse FFT (with transpose)", fft_time));
+        rows.push(("inverse FFT (whole, row blocks)", fft_time));
         let pp = field::perlin_params(&params);
         rows.push((
             "Perlin, 6 octaves",

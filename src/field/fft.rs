@@ -453,7 +453,7 @@ impl InverseFft2 {
     }
 
     /// h(x) = Σ_k h̃(k)·e^{ik·x} on the grid. The spectrum is consumed (its buffer is
-    /// transformed in place and freed before the output is allocated).
+    /// transformed in place; the rows go through small per-task buffers).
     pub fn process(&self, mut half: HalfSpectrum) -> Vec<f32> {
         assert_eq!((half.nx, half.ny), (self.nx, self.ny), "plan/spectrum size");
         let (nx, ny) = (self.nx, self.ny);
@@ -464,40 +464,44 @@ impl InverseFft2 {
             || vec![Complex32::new(0.0, 0.0); scratch_len],
             |scratch, chunk| self.columns.process_with_scratch(chunk, scratch),
         );
-        // 2. transpose to rows of constant y.
-        let mut rows = vec![Complex32::new(0.0, 0.0); ny * nh];
-        let src = &half.data;
-        rows.par_chunks_mut(nh * TRANSPOSE_BLOCK)
-            .enumerate()
-            .for_each(|(b, block)| {
-                let j0 = b * TRANSPOSE_BLOCK;
-                let nrows = block.len() / nh;
-                for n in 0..nh {
-                    let col = &src[n * ny + j0..n * ny + j0 + nrows];
-                    for (jj, v) in col.iter().enumerate() {
-                        block[jj * nh + n] = *v;
-                    }
-                }
-            });
-        drop(half);
-        // 3. complex-to-real inverse FFT along x. The DC bin (and the Nyquist bin for even
-        // N) of every row is real up to round-off because the spectrum is Hermitian.
+        // 2–3. complex-to-real inverse FFT along x, TRANSPOSE_BLOCK rows at a time: each
+        // task gathers its rows of constant y from the kx lines into a small buffer (no
+        // full transposed copy) and transforms them into the output. The DC bin (and the
+        // Nyquist bin for even N) of every row is real up to round-off because the
+        // spectrum is Hermitian.
         let mut out = vec![0.0f32; nx * ny];
         let scratch_len = self.rows.get_scratch_len();
-        rows.par_chunks_mut(nh)
-            .zip(out.par_chunks_mut(nx))
+        let src = &half.data;
+        out.par_chunks_mut(nx * TRANSPOSE_BLOCK)
+            .enumerate()
             .for_each_init(
-                || vec![Complex32::new(0.0, 0.0); scratch_len],
-                |scratch, (input, output)| {
-                    input[0].im = 0.0;
-                    if nx % 2 == 0 {
-                        input[nh - 1].im = 0.0;
+                || {
+                    (
+                        vec![Complex32::new(0.0, 0.0); nh * TRANSPOSE_BLOCK],
+                        vec![Complex32::new(0.0, 0.0); scratch_len],
+                    )
+                },
+                |(block, scratch), (b, outs)| {
+                    let j0 = b * TRANSPOSE_BLOCK;
+                    let nrows = outs.len() / nx;
+                    for n in 0..nh {
+                        let col = &src[n * ny + j0..n * ny + j0 + nrows];
+                        for (jj, v) in col.iter().enumerate() {
+                            block[jj * nh + n] = *v;
+                        }
                     }
-                    self.rows
-                        .process_with_scratch(input, output, scratch)
-                        .expect("buffer lengths come from the plan");
+                    for (input, output) in block.chunks_mut(nh).zip(outs.chunks_mut(nx)) {
+                        input[0].im = 0.0;
+                        if nx % 2 == 0 {
+                            input[nh - 1].im = 0.0;
+                        }
+                        self.rows
+                            .process_with_scratch(input, output, scratch)
+                            .expect("buffer lengths come from the plan");
+                    }
                 },
             );
+        drop(half);
         out
     }
 }
