@@ -280,26 +280,6 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
     out
 }
 
-/// Central-difference slopes of a periodic field (for fields without a spectrum).
-pub fn slopes_central(h: &[f32], spec: &GridSpec) -> [Vec<f32>; 2] {
-    let (nx, ny) = (spec.nx, spec.ny);
-    let (hx, hy) = (0.5 / spec.dx_m(), 0.5 / spec.dy_m());
-    let mut sx = vec![0.0f32; nx * ny];
-    let mut sy = vec![0.0f32; nx * ny];
-    sx.par_chunks_mut(nx)
-        .zip(sy.par_chunks_mut(nx))
-        .enumerate()
-        .for_each(|(j, (rx, ry))| {
-            let (jm, jp) = ((j + ny - 1) % ny, (j + 1) % ny);
-            for i in 0..nx {
-                let (im, ip) = ((i + nx - 1) % nx, (i + 1) % nx);
-                rx[i] = ((h[j * nx + ip] - h[j * nx + im]) as f64 * hx) as f32;
-                ry[i] = ((h[jp * nx + i] - h[jm * nx + i]) as f64 * hy) as f32;
-            }
-        });
-    [sx, sy]
-}
-
 /// Unit normals (x, y, z) of the surface (x0 + λD, h) at every grid point, z up: the
 /// cross product of the tangents (1 + λDx,x, λDy,x, hx) × (λDx,y, 1 + λDy,y, hy). Needs
 /// the slopes; the displacement derivatives are taken as zero when `ddisp` is None.
@@ -483,7 +463,9 @@ mod tests {
             0.0,
         );
         let [sx, sy] = s.slopes.unwrap();
-        let [cx, cy] = slopes_central(&h, &spec);
+        let grid = crate::grid::Grid::new(spec, h.clone());
+        let crate::export::mesh::Slopes { dhdx: cx, dhdy: cy } =
+            crate::export::mesh::slopes_central(&grid, true);
         let rms = |v: &[f32]| {
             (v.iter().map(|&x| (x as f64).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
         };

@@ -329,7 +329,8 @@ impl Synthesizer {
         // Without a spectrum of the whole field (Perlin, or the hybrid blend), slopes by
         // central differences of the heights.
         if self.extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
-            surface.slopes = Some(dynamics::slopes_central(&grid.data, &spec));
+            let s = crate::export::mesh::slopes_central(&grid, params.is_periodic());
+            surface.slopes = Some([s.dhdx, s.dhdy]);
         }
         if self.extras.jacobian && surface.jacobian.is_none() {
             surface.jacobian = Some(vec![1.0; spec.len()]);

@@ -112,11 +112,10 @@ multiversion! {
             let g = exp_fast(-ga.min(GAMMA_ARG_FAST));
             let on = (peaked & (ga < 700.0)) as u8 as f64;
             let add = on * (sh.ln_gamma * g);
-            let x = if plain {
-                0.0
-            } else {
-                0.25 * ln_positive_normal(v) - sh.x_shift
-            };
+            // ln computed on every lane (a table load inside a branch would stop the
+            // compiler from vectorizing the loop).
+            let lv = ln_positive_normal(v);
+            let x = if plain { 0.0 } else { 0.25 * lv - sh.x_shift };
             let special = (peaked & (GAMMA_ARG_FAST..700.0).contains(&ga))
                 | (k2 <= 0.0)
                 | (k2 == f64::INFINITY)
@@ -129,27 +128,12 @@ multiversion! {
         if deep && !tma {
             let mut flags = 0u64;
             for i in 0..n {
-                let kk2 = k2[i];
-                let k = kk2.sqrt();
-                let geo = 0.5 / (G * G * kk2 * kk2);
-                let w2 = G * k;
-                let v = w2 * w2 * sh.inv_wp4;
-                let u = 1.0 / v;
-                let q = v.sqrt().sqrt();
-                let d = q - 1.0;
-                let ga = d * d * if d <= 0.0 { C_LOW } else { C_HIGH };
-                let g = exp_fast(-ga.min(GAMMA_ARG_FAST));
-                let on = (peaked & (ga < 700.0)) as u8 as f64;
-                inv_k[i] = 1.0 / k;
-                a[i] = sh.coef * geo;
-                e[i] = -1.25 * u + on * (sh.ln_gamma * g);
-                let lv = ln_positive_normal(v);
-                x[i] = if plain { 0.0 } else { 0.25 * lv - sh.x_shift };
-                flags |= ((peaked & (GAMMA_ARG_FAST..700.0).contains(&ga))
-                    | (kk2 <= 0.0)
-                    | (kk2 == f64::INFINITY)
-                    | (u > U_MAX)
-                    | ln_is_special(v)) as u64;
+                let k = k2[i].sqrt();
+                let geo = 0.5 / (G * G * k2[i] * k2[i]);
+                let sp;
+                (inv_k[i], a[i], e[i], x[i], sp) =
+                    lane(sh, peaked, plain, k2[i], G * k, geo, k, |_| 1.0);
+                flags |= sp as u64;
             }
             special |= flags != 0;
         } else {
