@@ -210,12 +210,11 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             e.mapping_source.clone(),
         ),
         (None, None) if kinds.contains(&Kind::Png) => {
-            let heights_only = Synthesizer::new(&params, Default::default(), true)?;
             let ranges: Vec<(f64, f64)> = (0..args.frames)
                 .into_par_iter()
                 .with_max_len(1)
                 .map(|k| {
-                    let s = heights_only.frame(time_of(k)).grid.stats();
+                    let s = synth.heights(time_of(k)).stats();
                     (s.min_m, s.max_m)
                 })
                 .collect();

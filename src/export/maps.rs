@@ -103,7 +103,7 @@ pub fn write_map(
             let slopes = surf.slopes.as_ref().ok_or_else(missing)?;
             let normals = crate::field::dynamics::normals(slopes, None);
             let rgb = normal_rgb(&normals);
-            staged.write_with(|w| write_rgb8(w, &spec, &rgb))
+            super::rgb8::write(staged, &rgb, (spec.nx as u32, spec.ny as u32))
         }
         MapKind::Foam => {
             let j = surf.jacobian.as_ref().ok_or_else(missing)?;
@@ -155,20 +155,6 @@ pub fn write_gray16<W: Write>(w: W, spec: &GridSpec, values: &[u16]) -> std::io:
     let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
     writer
         .write_image_data(&bytes)
-        .map_err(std::io::Error::other)?;
-    writer.finish().map_err(std::io::Error::other)
-}
-
-/// An 8-bit RGB PNG.
-pub fn write_rgb8<W: Write>(w: W, spec: &GridSpec, rgb: &[u8]) -> std::io::Result<()> {
-    let mut enc = png::Encoder::new(w, spec.nx as u32, spec.ny as u32);
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
-    enc.set_compression(png::Compression::Fast);
-    enc.set_filter(png::Filter::Up);
-    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-    writer
-        .write_image_data(rgb)
         .map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
 }

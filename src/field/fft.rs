@@ -118,7 +118,7 @@ impl SpectrumSetup<'_> {
 
     /// ω(k)·t. With a loop period T the phase is ω·(t mod T), so frames T apart match.
     #[inline]
-    fn omega_t(&self, kx: f64, ky: f64) -> f64 {
+    pub fn omega_t(&self, kx: f64, ky: f64) -> f64 {
         if self.time_s == 0.0 {
             return 0.0;
         }

@@ -59,14 +59,7 @@ impl Motion {
             0.0
         };
         match self.mode {
-            PhaseMode::Dispersion => {
-                let wt = if let Some(period) = setup.loop_period_s {
-                    setup.omega(kx, ky) * (t - period * (t / period).floor())
-                } else {
-                    setup.omega(kx, ky) * t
-                };
-                s * wt
-            }
+            PhaseMode::Dispersion => s * setup.omega_t(kx, ky),
             PhaseMode::Translate => along * self.speed_mps * t,
             PhaseMode::HotAir => {
                 let k = (kx * kx + ky * ky).sqrt();

@@ -266,8 +266,18 @@ impl Synthesizer {
         })
     }
 
-    /// The field at `time_s`.
+    /// The field at `time_s`, with the derived fields of `new`'s `extras`.
     pub fn frame(&self, time_s: f64) -> Synthesis {
+        self.frame_with(time_s, self.extras)
+    }
+
+    /// The heights alone at `time_s` (no derived fields beyond what a choppy height
+    /// needs): the same grid as [`frame`](Self::frame).
+    pub fn heights(&self, time_s: f64) -> Grid {
+        self.frame_with(time_s, dynamics::Extras::default()).grid
+    }
+
+    fn frame_with(&self, time_s: f64, extras: dynamics::Extras) -> Synthesis {
         let params = &self.params;
         let spec = self.spec;
         let mut info = self.info.clone();
@@ -285,18 +295,18 @@ impl Synthesizer {
             if params.method != Method::FilteredNoise {
                 info.h0max_m = Some(half.h0max_m);
             }
-            if self.extras.any() || lambda != 0.0 {
-                surface = dynamics::surface(&half, &spec, plan, self.extras, lambda);
+            if extras.any() || lambda != 0.0 {
+                surface = dynamics::surface(&half, &spec, plan, extras, lambda);
             }
             let mut data = plan.process(half);
             if let Some(d) = surface.displacement.as_ref().filter(|_| lambda != 0.0) {
                 let choppy = dynamics::resample_choppy(&data, d, &spec);
                 let still = std::mem::replace(&mut data, choppy);
-                if self.extras.displacement {
+                if extras.displacement {
                     surface.undisplaced_height = Some(still);
                 }
             }
-            if !self.extras.displacement {
+            if !extras.displacement {
                 surface.displacement = None;
             }
             Grid::new(spec, data)
@@ -328,11 +338,11 @@ impl Synthesizer {
         };
         // Without a spectrum of the whole field (Perlin, or the hybrid blend), slopes by
         // central differences of the heights.
-        if self.extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
+        if extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
             let s = crate::export::mesh::slopes_central(&grid, params.is_periodic());
             surface.slopes = Some([s.dhdx, s.dhdy]);
         }
-        if self.extras.jacobian && surface.jacobian.is_none() {
+        if extras.jacobian && surface.jacobian.is_none() {
             surface.jacobian = Some(vec![1.0; spec.len()]);
         }
         Synthesis {
