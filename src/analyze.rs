@@ -1057,14 +1057,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
                     PathElement::new(vec![(x, y), (x + 20, y)], gray.stroke_width(1))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .label_font((FONT, 15))
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .draw()
-            .map_err(draw_err)?;
+        crate::export::rgb8::draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         root.present().map_err(draw_err)?;
     }
     Ok(buf)
