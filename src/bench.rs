@@ -168,13 +168,21 @@ pub fn run(args: BenchArgs) -> Result<()> {
             "animation frame: height",
             time(repeats, || heights.frame(1.0)),
         ));
-        let mut choppy = fft_params.clone();
-        choppy.motion.choppiness = 0.8;
         let all = field::dynamics::Extras {
             slopes: true,
             displacement: true,
             jacobian: true,
         };
+        let still_full = field::Synthesizer::new(&fft_params, all, true)?;
+        rows.push((
+            "  + normals, foam, displacement",
+            time(repeats, || {
+                let f = still_full.frame(1.0);
+                (f.surface.normals(), f)
+            }),
+        ));
+        let mut choppy = fft_params.clone();
+        choppy.motion.choppiness = 0.8;
         let choppy_heights = field::Synthesizer::new(&choppy, Default::default(), true)?;
         rows.push((
             "animation frame: choppy height λ=0.8",
@@ -185,8 +193,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             "  + normals, foam, displacement",
             time(repeats, || {
                 let f = full.frame(1.0);
-                let slopes = f.surface.slopes.as_ref().expect("asked for");
-                (field::dynamics::normals(slopes, None), f)
+                (f.surface.normals(), f)
             }),
         ));
         let plan = fft::InverseFft2::new(n, n);

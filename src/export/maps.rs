@@ -74,10 +74,7 @@ pub fn extras_for(kinds: &[MapKind]) -> crate::field::dynamics::Extras {
     let mut e = crate::field::dynamics::Extras::default();
     for k in kinds {
         match k {
-            MapKind::Normal => {
-                e.slopes = true;
-                e.jacobian = true;
-            }
+            MapKind::Normal => e.slopes = true,
             MapKind::Foam | MapKind::Jacobian => e.jacobian = true,
             MapKind::Displacement => e.displacement = true,
         }
@@ -100,8 +97,7 @@ pub fn write_map(
     };
     match kind {
         MapKind::Normal => {
-            let slopes = surf.slopes.as_ref().ok_or_else(missing)?;
-            let normals = crate::field::dynamics::normals(slopes, None);
+            let normals = surf.normals().ok_or_else(missing)?;
             let rgb = normal_rgb(&normals);
             super::rgb8::write(staged, &rgb, (spec.nx as u32, spec.ny as u32))
         }

@@ -23,10 +23,11 @@
 //!
 //! # Choppy height map
 //! The displaced surface is (x0 + λD(x0), h(x0)). Its height at a grid point x is h(x0)
-//! with x0 solving x0 + λD(x0) = x, found by the fixed-point iteration
-//! x0 ← x − λD(x0) (bilinear, periodic interpolation of D; at most `CHOPPY_ITERATIONS`
-//! steps, fewer once a step moves x0 by less than 1e-4 of a sample; it converges wherever
-//! the surface does not fold, λ|∂D| < 1), then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
+//! with x0 solving x0 + λD(x0) = x, found by Newton's method on the bilinear, periodic
+//! interpolant of λD, starting from x0 = x − λD(x): the step is (I + λ∇D)⁻¹(x0 + λD(x0) − x)
+//! with the interpolant's own gradient, or the fixed-point step x0 ← x − λD(x0) where
+//! det(I + λ∇D) < 0.05 (near folds). At most `CHOPPY_ITERATIONS` steps, fewer once a step
+//! moves x0 by less than 1e-4 of a sample. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
 //! (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
 use rayon::prelude::*;
@@ -35,8 +36,11 @@ use rustfft::num_complex::Complex32;
 use super::fft::{HalfSpectrum, InverseFft2, signed_index};
 use crate::grid::GridSpec;
 
-/// Largest number of fixed-point steps of the choppy resampling …
+/// Largest number of steps of the choppy resampling …
 pub const CHOPPY_ITERATIONS: usize = 8;
+/// Below this det J a step of the choppy resampling is a fixed-point step instead of
+/// Newton's (where the surface nearly folds, Newton's step is unbounded).
+const NEWTON_MIN_DET: f64 = 0.05;
 /// … which stops early once a step moves the point less than this, in samples (a height
 /// error below 1e-4·dx·|slope|).
 const CHOPPY_CONVERGED: f64 = 1e-4;
@@ -54,46 +58,71 @@ pub enum Derivative {
 }
 
 impl Derivative {
-    /// The factor at (kx, ky): (re, im).
-    #[inline]
-    fn factor(self, kx: f64, ky: f64) -> (f64, f64) {
-        let k = (kx * kx + ky * ky).sqrt();
-        if k == 0.0 {
-            return (0.0, 0.0);
+    /// Multiplies one kx line of h̃ by this factor, given the line's kx, the ky of each
+    /// entry and 1/|k| (0 at k = 0, so every factor vanishes there). One branch-free loop
+    /// per factor.
+    fn apply(self, line: &mut [Complex32], kx: f64, ky: &[f64], inv_k: &[f64]) {
+        let (ky, inv_k) = (&ky[..line.len()], &inv_k[..line.len()]);
+        // h̃·f for a real f(k), and h̃·i f.
+        fn real(line: &mut [Complex32], f: impl Fn(usize) -> f64) {
+            for (j, v) in line.iter_mut().enumerate() {
+                let f = f(j) as f32;
+                *v = Complex32::new(v.re * f, v.im * f);
+            }
+        }
+        fn imag(line: &mut [Complex32], f: impl Fn(usize) -> f64) {
+            for (j, v) in line.iter_mut().enumerate() {
+                let f = f(j) as f32;
+                *v = Complex32::new(-v.im * f, v.re * f);
+            }
         }
         match self {
-            Derivative::SlopeX => (0.0, kx),
-            Derivative::SlopeY => (0.0, ky),
-            Derivative::DispX => (0.0, kx / k),
-            Derivative::DispY => (0.0, ky / k),
-            Derivative::DxX => (-kx * kx / k, 0.0),
-            Derivative::DyY => (-ky * ky / k, 0.0),
-            Derivative::DxY => (-kx * ky / k, 0.0),
+            Derivative::SlopeX => imag(line, |_| kx),
+            Derivative::SlopeY => imag(line, |j| ky[j]),
+            Derivative::DispX => imag(line, |j| kx * inv_k[j]),
+            Derivative::DispY => imag(line, |j| ky[j] * inv_k[j]),
+            Derivative::DxX => real(line, |j| -kx * kx * inv_k[j]),
+            Derivative::DyY => real(line, |j| -ky[j] * ky[j] * inv_k[j]),
+            Derivative::DxY => real(line, |j| -kx * ky[j] * inv_k[j]),
         }
     }
 }
 
-/// h̃(k) times the factor of `d`, for every stored wavevector (still Hermitian: every
-/// factor has f(−k) = conj f(k)).
-pub fn derivative_spectrum(half: &HalfSpectrum, spec: &GridSpec, d: Derivative) -> HalfSpectrum {
+/// h̃(k) times the factor of each of `ds`, for every stored wavevector. Each result is
+/// still Hermitian: every factor has f(−k) = conj f(k); the k = 0 entry of each is 0.
+pub fn derivative_spectra(
+    half: &HalfSpectrum,
+    spec: &GridSpec,
+    ds: &[Derivative],
+) -> Vec<HalfSpectrum> {
     let (nx, ny) = (half.nx, half.ny);
     let tau = std::f64::consts::TAU;
-    let mut data = half.data.clone();
-    data.par_chunks_mut(ny).enumerate().for_each(|(n, line)| {
-        let kx = tau * n as f64 / spec.extent_x_m;
-        for (idx, v) in line.iter_mut().enumerate() {
-            let ky = tau * signed_index(idx, ny) as f64 / spec.extent_y_m;
-            let (fr, fi) = d.factor(kx, ky);
-            let (fr, fi) = (fr as f32, fi as f32);
-            *v = Complex32::new(v.re * fr - v.im * fi, v.re * fi + v.im * fr);
-        }
-    });
-    HalfSpectrum {
-        nx,
-        ny,
-        data,
-        h0max_m: half.h0max_m,
-    }
+    let ky: Vec<f64> = (0..ny)
+        .map(|j| tau * signed_index(j, ny) as f64 / spec.extent_y_m)
+        .collect();
+    ds.iter()
+        .map(|&d| {
+            let mut data = half.data.clone();
+            data.par_chunks_mut(ny).enumerate().for_each_init(
+                || vec![0.0f64; ny],
+                |inv_k, (n, line)| {
+                    let kx = tau * n as f64 / spec.extent_x_m;
+                    for (o, &ky) in inv_k.iter_mut().zip(&ky) {
+                        let k2 = kx * kx + ky * ky;
+                        let inv = 1.0 / k2.sqrt();
+                        *o = if k2 > 0.0 { inv } else { 0.0 };
+                    }
+                    d.apply(line, kx, &ky, inv_k);
+                },
+            );
+            HalfSpectrum {
+                nx,
+                ny,
+                data,
+                h0max_m: half.h0max_m,
+            }
+        })
+        .collect()
 }
 
 /// The real field of `d` on the grid.
@@ -103,7 +132,8 @@ pub fn derived_field(
     plan: &InverseFft2,
     d: Derivative,
 ) -> Vec<f32> {
-    plan.process(derivative_spectrum(half, spec, d))
+    let one = derivative_spectra(half, spec, &[d]).pop();
+    plan.process(one.expect("one spectrum asked for"))
 }
 
 /// Which derived fields a run needs.
@@ -127,6 +157,9 @@ pub struct Surface {
     pub slopes: Option<[Vec<f32>; 2]>,
     /// λ·Dx, λ·Dy in meters.
     pub displacement: Option<[Vec<f32>; 2]>,
+    /// λ·∂Dx/∂x, λ·∂Dy/∂y, λ·∂Dx/∂y: the gradient of the displacement, kept with the
+    /// slopes when λ ≠ 0 so the normals are those of the displaced surface.
+    pub displacement_gradient: Option<[Vec<f32>; 3]>,
     /// J of the displacement λD.
     pub jacobian: Option<Vec<f32>>,
     /// The heights before the choppy resampling (the z of a displacement map), when
@@ -134,8 +167,23 @@ pub struct Surface {
     pub undisplaced_height: Option<Vec<f32>>,
 }
 
-/// Computes the fields `extras` asks for (plus the displacement when λ ≠ 0, which the
-/// choppy height needs) from h̃.
+impl Surface {
+    /// Unit normals of the (displaced) surface at every grid point, when the slopes were
+    /// computed.
+    pub fn normals(&self) -> Option<Vec<[f32; 3]>> {
+        let slopes = self.slopes.as_ref()?;
+        let gradient = self
+            .displacement_gradient
+            .as_ref()
+            .map(|[a, b, c]| [a.as_slice(), b.as_slice(), c.as_slice()]);
+        Some(normals(slopes, gradient))
+    }
+}
+
+/// Computes the fields `extras` asks for (the displacement only when λ ≠ 0, where the
+/// choppy height needs it too, and the displacement gradient when λ ≠ 0 and the slopes are
+/// asked for, which the normals need) from h̃: all factors in one pass over h̃, then one
+/// complex-to-real transform per field.
 pub fn surface(
     half: &HalfSpectrum,
     spec: &GridSpec,
@@ -143,35 +191,48 @@ pub fn surface(
     extras: Extras,
     lambda: f64,
 ) -> Surface {
-    let field = |d| derived_field(half, spec, plan, d);
-    let scaled = |d| {
-        let mut v = field(d);
-        let l = lambda as f32;
-        v.par_iter_mut().for_each(|x| *x *= l);
-        v
-    };
-    let slopes = extras
-        .slopes
-        .then(|| [field(Derivative::SlopeX), field(Derivative::SlopeY)]);
-    let displacement = (extras.displacement || lambda != 0.0)
-        .then(|| [scaled(Derivative::DispX), scaled(Derivative::DispY)]);
-    let jacobian = extras.jacobian.then(|| {
-        if lambda == 0.0 {
-            return vec![1.0; spec.len()];
-        }
-        let (xx, yy, xy) = (
-            scaled(Derivative::DxX),
-            scaled(Derivative::DyY),
-            scaled(Derivative::DxY),
-        );
-        xx.par_iter()
-            .zip(&yy)
-            .zip(&xy)
+    use Derivative::*;
+    let choppy = lambda != 0.0;
+    let gradient = choppy && (extras.jacobian || extras.slopes);
+    let mut wanted = Vec::new();
+    if extras.slopes {
+        wanted.extend([SlopeX, SlopeY]);
+    }
+    // λD is zero without choppiness: no transform for it (a displacement map of a
+    // still sea writes zeros).
+    if choppy {
+        wanted.extend([DispX, DispY]);
+    }
+    if gradient {
+        wanted.extend([DxX, DyY, DxY]);
+    }
+    let l = lambda as f32;
+    let mut fields = derivative_spectra(half, spec, &wanted)
+        .into_iter()
+        .zip(&wanted)
+        .map(|(s, d)| {
+            let mut v = plan.process(s);
+            if !matches!(d, SlopeX | SlopeY) {
+                v.par_iter_mut().for_each(|x| *x *= l);
+            }
+            v
+        });
+    let mut next = || fields.next().expect("one field per wanted factor");
+    let slopes = extras.slopes.then(|| [next(), next()]);
+    let displacement = choppy.then(|| [next(), next()]);
+    let displacement_gradient = gradient.then(|| [next(), next(), next()]);
+    let jacobian = extras.jacobian.then(|| match &displacement_gradient {
+        None => vec![1.0; spec.len()],
+        Some([xx, yy, xy]) => xx
+            .par_iter()
+            .zip(yy)
+            .zip(xy)
             .map(|((&a, &b), &c)| (1.0 + a) * (1.0 + b) - c * c)
-            .collect()
+            .collect(),
     });
     Surface {
         slopes,
+        displacement_gradient: displacement_gradient.filter(|_| extras.slopes),
         displacement,
         jacobian,
         undisplaced_height: None,
@@ -233,7 +294,13 @@ impl Cell {
 /// module docs). `displacement` is λD in meters.
 pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec) -> Vec<f32> {
     let (nx, ny) = (spec.nx, spec.ny);
-    let (sx, sy) = (1.0 / spec.dx_m(), 1.0 / spec.dy_m());
+    let (sx, sy) = ((1.0 / spec.dx_m()) as f32, (1.0 / spec.dy_m()) as f32);
+    // λD in samples, x and y side by side: one load per corner.
+    let d: Vec<[f32; 2]> = displacement[0]
+        .par_iter()
+        .zip(&displacement[1])
+        .map(|(&u, &v)| [u * sx, v * sy])
+        .collect();
     let mut out = vec![0.0f32; nx * ny];
     const LANES: usize = 4;
     out.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
@@ -247,11 +314,11 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
             let mut done = [true; LANES];
             for l in 0..chunk.len() {
                 let i = c * LANES + l;
-                let p = j * nx + i;
                 x[l] = i as f64;
                 // First guess: the displacement at the grid point itself.
-                x0[l] = x[l] - displacement[0][p] as f64 * sx;
-                y0[l] = y - displacement[1][p] as f64 * sy;
+                let [u, v] = d[j * nx + i];
+                x0[l] = x[l] - u as f64;
+                y0[l] = y - v as f64;
                 done[l] = false;
             }
             for _ in 0..CHOPPY_ITERATIONS {
@@ -263,13 +330,10 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
                         continue;
                     }
                     let cell = Cell::new(nx, ny, x0[l], y0[l]);
-                    let (nx0, ny0) = (
-                        x[l] - cell.of(&displacement[0]) * sx,
-                        y - cell.of(&displacement[1]) * sy,
-                    );
-                    let step = (nx0 - x0[l]).abs().max((ny0 - y0[l]).abs());
-                    (x0[l], y0[l]) = (nx0, ny0);
-                    done[l] = step < CHOPPY_CONVERGED;
+                    let (dx, dy) = newton_step(&cell, &d, x0[l] - x[l], y0[l] - y);
+                    x0[l] -= dx;
+                    y0[l] -= dy;
+                    done[l] = dx.abs().max(dy.abs()) < CHOPPY_CONVERGED;
                 }
             }
             for (l, o) in chunk.iter_mut().enumerate() {
@@ -280,9 +344,35 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
     out
 }
 
+/// One step toward the root of F(x0) = x0 + λD(x0) − x, given x0 − x = (`ex`, `ey`) in
+/// samples, with D interpolated bilinearly in `cell`: Newton's step J⁻¹F with the
+/// gradient of the bilinear interpolant, or the plain fixed-point step F where
+/// J = I + λ∇D is nearly singular or folded (det J < `NEWTON_MIN_DET`).
+#[inline(always)]
+fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> (f64, f64) {
+    let v = cell.at.map(|p| d[p]);
+    let (tx, ty) = (cell.tx, cell.ty);
+    let mut value = [0.0; 2];
+    let mut grad = [[0.0; 2]; 2];
+    for c in 0..2 {
+        let [v0, v1, v2, v3] = [v[0][c], v[1][c], v[2][c], v[3][c]].map(f64::from);
+        let a = v0 + (v1 - v0) * tx;
+        let b = v2 + (v3 - v2) * tx;
+        value[c] = a + (b - a) * ty;
+        grad[c] = [(v1 - v0) + ((v3 - v2) - (v1 - v0)) * ty, b - a];
+    }
+    let (fx, fy) = (ex + value[0], ey + value[1]);
+    let (j00, j01, j10, j11) = (1.0 + grad[0][0], grad[0][1], grad[1][0], 1.0 + grad[1][1]);
+    let det = j00 * j11 - j01 * j10;
+    if det < NEWTON_MIN_DET {
+        return (fx, fy);
+    }
+    ((j11 * fx - j01 * fy) / det, (j00 * fy - j10 * fx) / det)
+}
+
 /// Unit normals (x, y, z) of the surface (x0 + λD, h) at every grid point, z up: the
 /// cross product of the tangents (1 + λDx,x, λDy,x, hx) × (λDx,y, 1 + λDy,y, hy). Needs
-/// the slopes; the displacement derivatives are taken as zero when `ddisp` is None.
+/// the slopes; `ddisp` is (λDx,x, λDy,y, λDx,y), taken as zero when None (λ = 0).
 pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 3]> {
     let n = slopes[0].len();
     (0..n)
@@ -440,6 +530,38 @@ mod tests {
             );
         }
         assert!(d[0].iter().any(|&v| v.abs() as f64 > 0.4 * lambda * a));
+    }
+
+    #[test]
+    fn choppy_normals_are_those_of_the_trochoid_and_still_ones_ignore_no_term() {
+        // Trochoid x = x0 − λA sin(kx0 + φ), z = A cos(kx0 + φ): the tangent along x0 is
+        // (1 − λAk cos, 0, −Ak sin), so the unit normal is ∝ (Ak sin, 0, 1 − λAk cos).
+        const TOLERANCE: f64 = 1e-4;
+        let (a, phase, k, spec, half) = cosine(3, 256, 100.0);
+        let plan = InverseFft2::new(spec.nx, spec.ny);
+        let slopes_only = Extras {
+            slopes: true,
+            ..Default::default()
+        };
+        for lambda in [0.0, 0.5] {
+            let s = surface(&half, &spec, &plan, slopes_only, lambda);
+            assert_eq!(s.displacement_gradient.is_some(), lambda != 0.0);
+            let n = s.normals().expect("slopes asked for");
+            for (i, got) in n.iter().enumerate().take(spec.nx) {
+                let u = k * i as f64 * spec.dx_m() + phase;
+                let (nx, nz) = (a * k * u.sin(), 1.0 - lambda * a * k * u.cos());
+                let len = (nx * nx + nz * nz).sqrt();
+                let want = [nx / len, 0.0, nz / len];
+                for c in 0..3 {
+                    assert!(
+                        (got[c] as f64 - want[c]).abs() < TOLERANCE,
+                        "λ = {lambda}, normal[{i}][{c}] = {} vs {}",
+                        got[c],
+                        want[c]
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -337,10 +337,12 @@ impl Synthesizer {
             _ => unreachable!("every method computes at least one field"),
         };
         // Without a spectrum of the whole field (Perlin, or the hybrid blend), slopes by
-        // central differences of the heights.
+        // central differences of the heights (already resampled when choppy, so their
+        // normals need no displacement gradient).
         if extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
             let s = crate::export::mesh::slopes_central(&grid, params.is_periodic());
             surface.slopes = Some([s.dhdx, s.dhdy]);
+            surface.displacement_gradient = None;
         }
         if extras.jacobian && surface.jacobian.is_none() {
             surface.jacobian = Some(vec![1.0; spec.len()]);
