@@ -180,15 +180,28 @@ fn indexes_in(dir: &Path) -> Result<Vec<PathBuf>> {
     Ok(shards)
 }
 
-/// `prefix/file` for a file of `dir` seen from `out`: nothing when they are the same
-/// folder, the relative path when `dir` is inside `out`, else `dir` as given.
+/// The path of folder `dir` relative to folder `out` (`../b` for sibling folders), so
+/// that a merged index in `out` names the files of every shard from where it lies.
 fn prefix_from(out: &Path, dir: &Path) -> PathBuf {
-    let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let canon = |p: &Path| {
+        std::fs::canonicalize(p)
+            .or_else(|_| std::path::absolute(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    };
     let (o, d) = (canon(out), canon(dir));
-    match d.strip_prefix(&o) {
-        Ok(rel) => rel.to_path_buf(),
-        Err(_) => dir.to_path_buf(),
+    let (oc, dc): (Vec<_>, Vec<_>) = (o.components().collect(), d.components().collect());
+    let common = oc.iter().zip(&dc).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return d;
     }
+    let mut rel = PathBuf::new();
+    for _ in common..oc.len() {
+        rel.push("..");
+    }
+    for c in &dc[common..] {
+        rel.push(c);
+    }
+    rel
 }
 
 /// Merges the shard indexes found in `dirs` into one index of the whole batch, written
@@ -285,6 +298,22 @@ mod tests {
             hash: None,
             error: None,
         }
+    }
+
+    #[test]
+    fn shard_folders_are_named_from_the_merged_index() {
+        let t = tempfile::tempdir().unwrap();
+        let p = t.path();
+        for d in ["a/s1", "b"] {
+            std::fs::create_dir_all(p.join(d)).unwrap();
+        }
+        assert_eq!(prefix_from(&p.join("a"), &p.join("a/s1")), Path::new("s1"));
+        assert_eq!(prefix_from(&p.join("a"), &p.join("a")), Path::new(""));
+        assert_eq!(
+            prefix_from(&p.join("a/s1"), &p.join("b")),
+            Path::new("../../b")
+        );
+        assert_eq!(prefix_from(&p.join("new"), &p.join("b")), Path::new("../b"));
     }
 
     #[test]
