@@ -90,7 +90,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
     } else {
         args.outputs.clone()
     };
-    let written = write_field(&params, &paths, &options, &SidecarExtras::default())?;
+    let written = write_field(&params, &paths, &options, &SidecarExtras::default(), None)?;
     if !args.quiet {
         let [nx, ny] = params.grid.size.0;
         let stats = written.stats;
@@ -141,11 +141,14 @@ pub struct Written {
 /// Synthesizes the field of `params` once and writes it to every path (format by
 /// extension; maps and previews by their `NAME.KIND.ext` names), with the sidecars. Every
 /// file is staged before the work, so a bad path fails first and nothing partial is left.
+/// `computed`: the field of `params` already synthesized without derived fields
+/// (`Synthesizer::frame` with no extras), used when the outputs need none.
 pub fn write_field(
     params: &Params,
     paths: &[PathBuf],
     options: &ExportOptions,
     notes: &SidecarExtras,
+    computed: Option<field::Synthesis>,
 ) -> Result<Written> {
     let params = params.clone();
     let paths = paths.to_vec();
@@ -245,7 +248,10 @@ pub fn write_field(
     let exact_slopes = crate::render::command::exact_slopes_apply(&params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
-    let synthesis = field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
+    let synthesis = match computed.filter(|_| !extras.any()) {
+        Some(s) => s,
+        None => field::Synthesizer::new(&params, extras, false)?.frame(params.time_s),
+    };
     let mesh_slopes = synthesis
         .surface
         .slopes

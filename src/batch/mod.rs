@@ -12,6 +12,7 @@ pub mod plan;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use anyhow::Result;
@@ -25,6 +26,7 @@ use crate::config::{Params, Range2};
 use crate::error::{Error, ParamError};
 use crate::export::options::{ExportArgs, ExportOptions};
 use crate::export::{Format, HeightMapping, Staged};
+use crate::field::Synthesis;
 use crate::jobs::{self, FileKind, Progress};
 use index::{Index, Row, RowStats, Status};
 use plan::{JobSpec, Manifest, NameTemplate, Shard, Sweep};
@@ -371,6 +373,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         .unwrap_or(1);
     let workers = jobs::parallel_jobs(args.jobs, per_job);
     let started = Instant::now();
+    let computed: Mutex<BTreeMap<usize, Synthesis>> = Mutex::new(BTreeMap::new());
     let mapping: Option<HeightMapping> = if uses_mapping && !needs.is_empty() {
         match earlier
             .as_ref()
@@ -381,14 +384,35 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 max_m: hi,
             }),
             None => {
+                // The fields of this run's jobs are kept for writing while they fit in a
+                // quarter of the available memory; the others are computed again.
+                // (Maps, previews and meshes need derived fields: theirs are recomputed.)
+                let plain = !suffixes
+                    .iter()
+                    .any(|s| s.contains('.') || s == "obj" || s == "glb");
+                let budget = if plain {
+                    jobs::available_memory().unwrap_or(0) / 4
+                } else {
+                    0
+                };
+                let reserved = std::sync::atomic::AtomicU64::new(0);
                 let ranges = jobs::run_pool(needs.len(), workers, |i| {
-                    let p = all[needs[i]].params.as_ref().expect("resolved");
-                    crate::field::Synthesizer::new(p, Default::default(), false)
-                        .ok()
-                        .map(|s| {
-                            let st = s.heights(p.time_s).stats();
-                            (st.min_m, st.max_m)
-                        })
+                    let job = needs[i];
+                    let p = all[job].params.as_ref().expect("resolved");
+                    let s = crate::field::Synthesizer::new(p, Default::default(), false).ok()?;
+                    let syn = s.frame(p.time_s);
+                    let st = syn.grid.stats();
+                    let bytes = syn.grid.data.len() as u64 * 4;
+                    let keep = shard.contains(job)
+                        && reserved.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed) + bytes
+                            <= budget;
+                    if keep {
+                        computed
+                            .lock()
+                            .expect("no worker panicked")
+                            .insert(job, syn);
+                    }
+                    Some((st.min_m, st.max_m))
                 });
                 jobs::union_range(ranges.into_iter().flatten())
             }
@@ -504,7 +528,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     mapping_source: mapping.is_some().then_some(BATCH_RANGE),
                     batch: Some(&records[i]),
                 };
-                write_field(p, &paths, &options, &extras).map_err(|e| {
+                let syn = computed.lock().expect("no worker panicked").remove(&i);
+                write_field(p, &paths, &options, &extras, syn).map_err(|e| {
                     let usage = e.downcast_ref::<Error>().is_some_and(|e| e.is_usage());
                     (format!("{e:#}"), usage)
                 })
