@@ -108,6 +108,10 @@ struct BatchDoc {
     mapping_source: String,
 }
 
+/// Most bytes of fields the first pass keeps for writing (a cluster node's memory may be
+/// shared by many tasks, whatever `MemAvailable` says).
+const KEEP_MAX_BYTES: u64 = 512 << 20;
+
 /// The mapping source recorded in sidecars of jobs whose range the batch computed.
 const BATCH_RANGE: &str = "min..max over every job of the batch";
 
@@ -385,13 +389,13 @@ pub fn run(args: BatchArgs) -> Result<()> {
             }),
             None => {
                 // The fields of this run's jobs are kept for writing while they fit in a
-                // quarter of the available memory; the others are computed again.
+                // quarter of the available memory and 512 MiB; the others are computed again.
                 // (Maps, previews and meshes need derived fields: theirs are recomputed.)
                 let plain = !suffixes
                     .iter()
                     .any(|s| s.contains('.') || s == "obj" || s == "glb");
                 let budget = if plain {
-                    jobs::available_memory().unwrap_or(0) / 4
+                    (jobs::available_memory().unwrap_or(0) / 4).min(KEEP_MAX_BYTES)
                 } else {
                     0
                 };
