@@ -216,6 +216,24 @@ mod tests {
     }
 
     #[test]
+    fn parallel_jobs_stay_under_the_available_memory() {
+        assert_eq!(parallel_jobs(Some(3), 1), 3, "small jobs: as many as asked");
+        assert_eq!(
+            parallel_jobs(Some(3), u64::MAX / 4),
+            1,
+            "huge jobs: one at a time"
+        );
+        assert_eq!(parallel_jobs(Some(0), 1), 1, "at least one");
+        if let Some(m) = available_memory() {
+            assert_eq!(
+                parallel_jobs(Some(8), m / 5),
+                2,
+                "two fit twice into {m} bytes"
+            );
+        }
+    }
+
+    #[test]
     fn the_union_range_spans_every_field() {
         let m = union_range([(-1.0, 0.5), (-0.25, 2.0), (0.0, 1.0)]).unwrap();
         assert_eq!((m.min_m, m.max_m), (-1.0, 2.0));

@@ -418,6 +418,10 @@ fn a_job_with_bad_parameters_fails_alone_and_the_batch_exits_non_zero() {
         "the failing job and its value are named:\n{stderr}"
     );
     assert!(stderr.contains("1 of 3 jobs failed"), "{stderr}");
+    assert!(
+        stderr.contains("[3/3] job ") && stderr.contains("ETA"),
+        "a plain line per job when stderr is not a terminal:\n{stderr}"
+    );
     for name in ["0_wind-speed=7", "2_wind-speed=10"] {
         assert!(
             d.join(format!("b/{name}.png")).is_file(),
@@ -694,4 +698,60 @@ fn the_same_seed_gives_the_same_random_phases_at_every_wind_direction() {
             "filtered {spectrum}: only {compared} compared"
         );
     }
+}
+
+#[test]
+fn tiled_jobs_list_their_tiles_and_are_kept_by_resume() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = batch(&[
+        "--sweep",
+        "seed=1,2",
+        "--format",
+        "obj,normal",
+        "--tiles",
+        "2x2",
+        "-o",
+        "t",
+        "-q",
+    ]);
+    run_ok(d, &args);
+    let index = json_file(&d.join("t/index.json"));
+    let mut listed = BTreeSet::new();
+    for r in rows(&index) {
+        let files: Vec<&str> = r["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap())
+            .collect();
+        assert_eq!(
+            files.len(),
+            4 + 1 + 1 + 1,
+            "4 tiles, the tile index, the map, the sidecar"
+        );
+        listed.extend(files.iter().map(|f| f.to_string()));
+    }
+    assert_eq!(
+        listed,
+        job_files(&d.join("t")),
+        "the index lists every file on disk"
+    );
+    let mut again = args.clone();
+    again.push("--resume");
+    run_ok(d, &again);
+    let index = json_file(&d.join("t/index.json"));
+    assert!(
+        rows(&index).iter().all(|r| r["status"] == "kept"),
+        "{index:#}"
+    );
+    // A missing tile makes its job incomplete.
+    std::fs::remove_file(d.join("t/1_seed=2_x1_y1.obj")).unwrap();
+    run_ok(d, &again);
+    let statuses: Vec<Value> = rows(&json_file(&d.join("t/index.json")))
+        .iter()
+        .map(|r| r["status"].clone())
+        .collect();
+    assert_eq!(statuses, ["kept", "ok"]);
+    assert!(d.join("t/1_seed=2_x1_y1.obj").is_file());
 }

@@ -491,8 +491,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
     let mut rows: BTreeMap<usize, Row> = BTreeMap::new();
     if args.resume {
         for &i in &mine {
-            let paths = all[i].paths(&dir, &suffixes);
-            if let Some(row) = kept_row(&all[i], &paths, &records[i], &dir) {
+            if let Some(row) = kept_row(&all[i], &suffixes, &records[i], &dir) {
                 rows.insert(i, row);
             }
         }
@@ -553,7 +552,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
                         name: job.name.clone(),
                         status: Status::Ok,
                         params: job.values.clone(),
-                        files: files_of(&paths, &dir),
+                        files: complete_files(&job.name, &suffixes, &records[i].hash, &dir)
+                            .map(|(f, _)| f)
+                            .unwrap_or_default(),
                         stats: Some(row_stats(&w.stats)),
                         seconds: Some(seconds),
                         hash: Some(records[i].hash.clone()),
@@ -648,55 +649,53 @@ fn row_stats(s: &crate::grid::Stats) -> RowStats {
     }
 }
 
-/// The files of a job relative to `dir`: its outputs, then its sidecar.
-fn files_of(paths: &[PathBuf], dir: &Path) -> Vec<String> {
-    let mut files: Vec<String> = paths
-        .iter()
-        .map(|p| {
-            p.strip_prefix(dir)
-                .unwrap_or(p)
-                .to_string_lossy()
-                .into_owned()
-        })
-        .collect();
-    if let Some(first) = paths.first() {
-        let side = crate::export::sidecar::path_for(first);
-        files.push(
-            side.strip_prefix(dir)
-                .unwrap_or(&side)
-                .to_string_lossy()
-                .into_owned(),
-        );
+/// The files of a complete job, relative to the folder, and its statistics, from its
+/// sidecar `DIR/NAME.json`: the files the sidecar lists (the height outputs, or their
+/// tiles), the tile index, the maps and previews (`NAME.KIND.ext`, which the sidecar does
+/// not list), then the sidecar. `None` unless the sidecar holds `hash` as the job's
+/// `batch.hash` and every one of those files is there.
+fn complete_files(
+    name: &str,
+    suffixes: &[String],
+    hash: &str,
+    dir: &Path,
+) -> Option<(Vec<String>, crate::grid::Stats)> {
+    let side = format!("{name}.json");
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join(&side)).ok()?).ok()?;
+    if doc.pointer("/batch/hash")?.as_str()? != hash {
+        return None;
     }
-    files
+    let mut files = Vec::new();
+    for f in doc.get("files")?.as_array()? {
+        files.push(f.get("file")?.as_str()?.to_string());
+    }
+    if let Some(t) = doc.get("tiles_index").and_then(|t| t.as_str()) {
+        files.push(t.to_string());
+    }
+    files.extend(
+        suffixes
+            .iter()
+            .filter(|s| s.contains('.'))
+            .map(|s| format!("{name}.{s}")),
+    );
+    files.push(side);
+    if !files.iter().all(|f| dir.join(f).is_file()) {
+        return None;
+    }
+    let stats = serde_json::from_value(doc.get("stats")?.clone()).ok()?;
+    Some((files, stats))
 }
 
-/// The index row of a job complete from an earlier run: every output there, and a
-/// sidecar whose `batch.hash` is this job's and whose listed files are all there.
-fn kept_row(job: &Job, paths: &[PathBuf], record: &JobRecord, dir: &Path) -> Option<Row> {
-    let side = crate::export::sidecar::path_for(paths.first()?);
-    if !paths.iter().all(|p| p.is_file()) {
-        return None;
-    }
-    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&side).ok()?).ok()?;
-    if doc.pointer("/batch/hash")?.as_str()? != record.hash {
-        return None;
-    }
-    let listed = doc.get("files")?.as_array()?;
-    if !listed.iter().all(|f| {
-        f.get("file")
-            .and_then(|n| n.as_str())
-            .is_some_and(|n| side.with_file_name(n).is_file())
-    }) {
-        return None;
-    }
-    let stats: crate::grid::Stats = serde_json::from_value(doc.get("stats")?.clone()).ok()?;
+/// The index row of a job complete from an earlier run ([`complete_files`]).
+fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
+    let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
     Some(Row {
         job: job.index,
         name: job.name.clone(),
         status: Status::Kept,
         params: job.values.clone(),
-        files: files_of(paths, dir),
+        files,
         stats: Some(row_stats(&stats)),
         seconds: None,
         hash: Some(record.hash.clone()),
