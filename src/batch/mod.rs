@@ -388,6 +388,12 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 max_m: hi,
             }),
             None => {
+                if !args.quiet {
+                    eprintln!(
+                        "first pass: the 16-bit mapping over the heights of {} jobs",
+                        needs.len()
+                    );
+                }
                 // The fields of this run's jobs are kept for writing while they fit in a
                 // quarter of the available memory and 512 MiB; the others are computed again.
                 // (Maps, previews and meshes need derived fields: theirs are recomputed.)
