@@ -755,3 +755,48 @@ fn tiled_jobs_list_their_tiles_and_are_kept_by_resume() {
     assert_eq!(statuses, ["kept", "ok"]);
     assert!(d.join("t/1_seed=2_x1_y1.obj").is_file());
 }
+
+#[test]
+fn the_li_tian_fig3_one_liner_gives_the_fig3_presets_under_one_mapping() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    run_ok(
+        d,
+        &[
+            "batch",
+            "--preset",
+            "li-tian",
+            "--sweep",
+            "wind-dir=0,45,90,135",
+            "-o",
+            "out/fig3",
+            "-q",
+        ],
+    );
+    let doc = json_file(&d.join("out/fig3/batch.json"));
+    let range = format!(
+        "{}:{}",
+        num(&doc, "/mapping_min_m"),
+        num(&doc, "/mapping_max_m")
+    );
+    for (i, deg) in [(1, 45), (2, 90), (3, 135)] {
+        let preset = format!("li-tian-{deg}");
+        run_ok(
+            d,
+            &[
+                "generate",
+                "--preset",
+                &preset,
+                &format!("--height-range={range}"),
+                "-o",
+                "g.png",
+                "-q",
+            ],
+        );
+        assert_eq!(
+            read(&d.join("g.png")),
+            read(&d.join(format!("out/fig3/{i}_wind-dir={deg}.png"))),
+            "job {i} is not the {preset} preset under the batch's mapping"
+        );
+    }
+}
