@@ -549,7 +549,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         let (row, usage) = match result {
             Ok(w) => {
                 progress.finished(&format!(
-                    "{label}: ok, {seconds:.2} s, Hs {:.3} m",
+                    "{label}: ok, {seconds:.3} s, Hs {:.3} m",
                     w.stats.hs_m
                 ));
                 (
