@@ -7,13 +7,11 @@
 //! only the time-dependent sines and cosines and the transforms. Frames are computed a few
 //! at a time in parallel, as many as the memory estimate allows.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cli::FieldArgs;
@@ -22,6 +20,7 @@ use crate::error::{Error, ParamError};
 use crate::export::maps::{self, MapContext, MapKind};
 use crate::export::{HeightMapping, Staged, png16, tiff32};
 use crate::field::{Synthesis, Synthesizer};
+use crate::jobs::{self, FileKind as Kind, Progress};
 
 #[derive(Debug, Args)]
 pub struct AnimateArgs {
@@ -51,49 +50,6 @@ pub struct AnimateArgs {
     pub threads: Option<usize>,
 }
 
-/// One file kind of a frame.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Png,
-    Tif,
-    Map(MapKind),
-    /// A rendered perspective view (`seasynth render`'s default camera).
-    Preview,
-}
-
-impl Kind {
-    fn parse(s: &str) -> Result<Self, ParamError> {
-        Ok(match s.trim() {
-            "png" => Kind::Png,
-            "tif" | "tiff" => Kind::Tif,
-            "normal" => Kind::Map(MapKind::Normal),
-            "foam" => Kind::Map(MapKind::Foam),
-            "jacobian" => Kind::Map(MapKind::Jacobian),
-            "disp" => Kind::Map(MapKind::Displacement),
-            "preview" => Kind::Preview,
-            other => {
-                return Err(ParamError {
-                    name: "--format".into(),
-                    allowed: "png, tif, normal, foam, jacobian, disp or preview".into(),
-                    got: other.into(),
-                });
-            }
-        })
-    }
-
-    fn suffix(&self) -> &'static str {
-        match self {
-            Kind::Png => "png",
-            Kind::Tif => "tif",
-            Kind::Map(MapKind::Normal) => "normal.png",
-            Kind::Map(MapKind::Foam) => "foam.png",
-            Kind::Map(MapKind::Jacobian) => "jacobian.tif",
-            Kind::Map(MapKind::Displacement) => "disp.tif",
-            Kind::Preview => "preview.png",
-        }
-    }
-}
-
 /// The sequence sidecar, `DIR/sequence.json`.
 #[derive(Debug, Serialize, Deserialize)]
 struct SequenceDoc {
@@ -116,22 +72,6 @@ struct SequenceDoc {
 
 fn frame_path(dir: &Path, k: usize, kind: Kind) -> PathBuf {
     dir.join(format!("frame_{k:05}.{}", kind.suffix()))
-}
-
-/// A rough peak-memory estimate of one frame, bytes.
-fn frame_bytes(params: &Params, kinds: &[Kind]) -> u64 {
-    let n = params.grid_spec().len() as u64;
-    let maps = kinds.iter().filter(|k| matches!(k, Kind::Map(_))).count() as u64;
-    // Height, spectrum and transform buffers, plus up to eight derived fields.
-    n * (24 + maps * 20)
-}
-
-/// Available memory from /proc/meminfo (Linux), bytes.
-fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
 }
 
 pub fn run(args: AnimateArgs) -> Result<()> {
@@ -172,8 +112,9 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     } else {
         None
     };
-    if let Some(e) = &earlier
-        && (e.params != params || e.frames != args.frames)
+    if earlier
+        .as_ref()
+        .is_some_and(|e| e.params != params || e.frames != args.frames)
     {
         return Err(Error::Output {
             path: side_path.clone(),
@@ -184,12 +125,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     let mut extras = maps::extras_for(&map_kinds);
     extras.slopes |= kinds.contains(&Kind::Preview);
     let synth = Synthesizer::new(&params, extras, true)?;
-    let jobs = args.jobs.unwrap_or_else(|| {
-        let by_memory = available_memory()
-            .map(|m| (m / 2 / frame_bytes(&params, &kinds).max(1)).max(1) as usize)
-            .unwrap_or(1);
-        rayon::current_num_threads().min(by_memory).max(1)
-    });
+    let jobs = jobs::parallel_jobs(args.jobs, jobs::field_bytes(&params, map_kinds.len()));
     let quiet = args.quiet;
     let started = Instant::now();
     // One mapping for the whole sequence: given, kept from the earlier run, or the range
@@ -210,21 +146,12 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             e.mapping_source.clone(),
         ),
         (None, None) if kinds.contains(&Kind::Png) => {
-            let ranges: Vec<(f64, f64)> = (0..args.frames)
-                .into_par_iter()
-                .with_max_len(1)
-                .map(|k| {
-                    let s = synth.heights(time_of(k)).stats();
-                    (s.min_m, s.max_m)
-                })
-                .collect();
-            let lo = ranges.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
-            let hi = ranges.iter().map(|r| r.1).fold(f64::NEG_INFINITY, f64::max);
+            let ranges = jobs::run_pool(args.frames, jobs, |k| {
+                let s = synth.heights(time_of(k)).stats();
+                (s.min_m, s.max_m)
+            });
             (
-                HeightMapping {
-                    min_m: lo,
-                    max_m: hi,
-                },
+                jobs::union_range(ranges).expect("at least one frame"),
                 "min..max over all frames".to_string(),
             )
         }
@@ -264,18 +191,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                     .all(|&kind| frame_path(&args.dir, k, kind).is_file())
         })
         .collect();
-    let bar = if quiet || !std::io::stderr().is_terminal() {
-        indicatif::ProgressBar::hidden()
-    } else {
-        let b = indicatif::ProgressBar::new(todo.len() as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{bar:40} {pos}/{len} frames, {per_sec}, ETA {eta}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    };
+    let bar = Progress::new(todo.len(), "frames", quiet, false);
     let cx_params = &params;
     let write_frame = |k: usize| -> Result<(), Error> {
         // Stage the frame's files first: a bad path fails before the work.
@@ -301,20 +217,14 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                 }
             }
         }
-        bar.inc(1);
+        bar.finished(&format!("frame {k}"));
         Ok(())
     };
-    for chunk in todo.chunks(jobs) {
-        let results: Vec<Result<(), Error>> = chunk
-            .par_iter()
-            .with_max_len(1)
-            .map(|&k| write_frame(k))
-            .collect();
-        for r in results {
-            r?;
-        }
+    let results = jobs::run_pool(todo.len(), jobs, |i| write_frame(todo[i]));
+    bar.finish();
+    for r in results {
+        r?;
     }
-    bar.finish_and_clear();
     if !quiet {
         let secs = started.elapsed().as_secs_f64();
         eprintln!(

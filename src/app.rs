@@ -24,6 +24,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Generate(args) => generate(*args),
         Command::Presets { name } => list_presets(name.as_deref()),
         Command::Animate(args) => crate::animate::run(*args),
+        Command::Batch(args) => crate::batch::run(*args),
         Command::Analyze(args) => crate::analyze::run(args),
         Command::Bench(args) => crate::bench::run(args),
         Command::Spectrum(args) => crate::spectrum_cmd::run(args),
@@ -89,6 +90,68 @@ fn generate(args: GenerateArgs) -> Result<()> {
     } else {
         args.outputs.clone()
     };
+    let written = write_field(&params, &paths, &options, &SidecarExtras::default(), None)?;
+    if !args.quiet {
+        let [nx, ny] = params.grid.size.0;
+        let stats = written.stats;
+        let mapping = written.mapping;
+        eprintln!(
+            "{} {nx}×{ny} over {}×{} m: std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
+            params.method.name(),
+            params.grid.extent_m.0[0],
+            params.grid.extent_m.0[1],
+            stats.std_m,
+            stats.hs_m,
+            stats.min_m,
+            stats.max_m
+        );
+        for p in &written.files {
+            eprintln!("wrote {}", p.display());
+        }
+        if written.has_png {
+            eprintln!(
+                "16-bit mapping: {:.4} m → 0, {:.4} m → 65535",
+                mapping.min_m, mapping.max_m
+            );
+        }
+    }
+    Ok(())
+}
+
+/// What a caller adds to the sidecars of [`write_field`].
+#[derive(Default)]
+pub struct SidecarExtras<'a> {
+    /// Where the 16-bit mapping came from when the caller set `output.height_range`
+    /// (default: `--height-range`).
+    pub mapping_source: Option<&'static str>,
+    /// The batch job this field is.
+    pub batch: Option<&'a crate::batch::JobRecord>,
+}
+
+/// What [`write_field`] wrote.
+pub struct Written {
+    pub stats: crate::grid::Stats,
+    pub mapping: HeightMapping,
+    /// A 16-bit PNG is among the outputs.
+    pub has_png: bool,
+    /// The outputs, as given (maps and previews last).
+    pub files: Vec<PathBuf>,
+}
+
+/// Synthesizes the field of `params` once and writes it to every path (format by
+/// extension; maps and previews by their `NAME.KIND.ext` names), with the sidecars. Every
+/// file is staged before the work, so a bad path fails first and nothing partial is left.
+/// `computed`: the field of `params` already synthesized without derived fields
+/// (`Synthesizer::frame` with no extras), used when the outputs need none.
+pub fn write_field(
+    params: &Params,
+    paths: &[PathBuf],
+    options: &ExportOptions,
+    notes: &SidecarExtras,
+    computed: Option<field::Synthesis>,
+) -> Result<Written> {
+    let params = params.clone();
+    let paths = paths.to_vec();
     let spec = params.grid_spec();
     let periodic = params.is_periodic();
     for (i, p) in paths.iter().enumerate() {
@@ -137,7 +200,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
             }
             .into());
         }
-        outputs.push(Output::plan(p, &options, &spec, periodic)?);
+        outputs.push(Output::plan(p, options, &spec, periodic)?);
     }
     let mut stems: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();
     for o in &outputs {
@@ -185,7 +248,10 @@ fn generate(args: GenerateArgs) -> Result<()> {
     let exact_slopes = crate::render::command::exact_slopes_apply(&params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
-    let synthesis = field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
+    let synthesis = match computed.filter(|_| !extras.any()) {
+        Some(s) => s,
+        None => field::Synthesizer::new(&params, extras, false)?.frame(params.time_s),
+    };
     let mesh_slopes = synthesis
         .surface
         .slopes
@@ -202,7 +268,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
                 min_m: r.0[0],
                 max_m: r.0[1],
             },
-            "--height-range",
+            notes.mapping_source.unwrap_or("--height-range"),
         ),
         None => (
             HeightMapping {
@@ -219,6 +285,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
     let mut docs = Vec::new();
     for (staged, index, outs) in staged_stems {
         let mut doc = Sidecar::new(&params, &synthesis.info, stats);
+        doc.batch = notes.batch;
         let mut uses_mapping = false;
         let mut sets = Vec::new();
         for o in outs.iter() {
@@ -320,28 +387,12 @@ fn generate(args: GenerateArgs) -> Result<()> {
             std::io::Write::write_all(w, b"\n")
         })?;
     }
-    if !args.quiet {
-        eprintln!(
-            "{} {nx}×{ny} over {}×{} m: std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
-            params.method.name(),
-            params.grid.extent_m.0[0],
-            params.grid.extent_m.0[1],
-            stats.std_m,
-            stats.hs_m,
-            stats.min_m,
-            stats.max_m
-        );
-        for p in paths.iter().chain(&map_paths) {
-            eprintln!("wrote {}", p.display());
-        }
-        if has_png {
-            eprintln!(
-                "16-bit mapping: {:.4} m → 0, {:.4} m → 65535",
-                mapping.min_m, mapping.max_m
-            );
-        }
-    }
-    Ok(())
+    Ok(Written {
+        stats,
+        mapping,
+        has_png,
+        files: paths.iter().chain(&map_paths).cloned().collect(),
+    })
 }
 
 fn file_name(p: &Path) -> String {

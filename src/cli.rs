@@ -28,6 +28,8 @@ pub enum Command {
     },
     /// A numbered frame sequence of one sea (frame k at t = time + k/fps), one 16-bit mapping for all
     Animate(Box<crate::animate::AnimateArgs>),
+    /// Many fields: sweeps (cartesian product) or a manifest, one 16-bit mapping, parallel, resumable, shardable
+    Batch(Box<crate::batch::BatchArgs>),
     /// Statistics and the measured spectrum of a height map (TIFF in meters, or PNG with its sidecar)
     Analyze(crate::analyze::AnalyzeArgs),
     /// Time each stage (spectrum, FFT, Perlin, blend, writers) against a bare 2D real FFT

@@ -3,6 +3,7 @@
 pub mod analyze;
 pub mod animate;
 pub mod app;
+pub mod batch;
 pub mod bench;
 pub mod cli;
 pub mod config;
@@ -11,6 +12,7 @@ pub mod export;
 pub mod fastmath;
 pub mod field;
 pub mod grid;
+pub mod jobs;
 pub mod render;
 pub mod rng;
 pub mod spectrum;

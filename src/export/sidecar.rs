@@ -79,6 +79,9 @@ pub struct Sidecar<'a> {
     /// The tile index listing the tile files, when outputs are tiled.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tiles_index: Option<String>,
+    /// The job of a `seasynth batch` this output belongs to.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub batch: Option<&'a crate::batch::JobRecord>,
     pub synthesis: &'a SynthesisInfo,
     pub params: &'a Params,
 }
@@ -139,6 +142,7 @@ impl<'a> Sidecar<'a> {
             exr: None,
             geotiff: None,
             tiles_index: None,
+            batch: None,
             synthesis: info,
             params,
         }

@@ -1,0 +1,789 @@
+//! `seasynth batch`: many fields from one command — sweeps over any parameter and their
+//! cartesian product, manifests, one 16-bit mapping for the whole batch, parallel jobs
+//! under a memory bound, `--resume`, `--shard K/N`, and an index of every job.
+//!
+//! Each job is a `generate` run: the same resolution of parameters, the same writers,
+//! sidecars and staged files. Its sidecar gains a `batch` record with the job's number,
+//! name, swept values and a hash of everything that fixes its files; `--resume` keeps a
+//! job whose files and sidecar are there with that hash.
+
+pub mod index;
+pub mod plan;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use anyhow::Result;
+use clap::Args;
+use serde::{Deserialize, Serialize};
+
+use crate::app::{SidecarExtras, write_field};
+use crate::cli::FieldArgs;
+use crate::config::layers::{self, Assignment, canonical_key};
+use crate::config::{Params, Range2};
+use crate::error::{Error, ParamError};
+use crate::export::options::{ExportArgs, ExportOptions};
+use crate::export::{Format, HeightMapping, Staged};
+use crate::field::Synthesis;
+use crate::jobs::{self, FileKind, Progress};
+use index::{Index, Row, RowStats, Status};
+use plan::{JobSpec, Manifest, NameTemplate, Shard, Sweep};
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    #[command(flatten)]
+    pub field: FieldArgs,
+    /// KEY=A,B,C or KEY=START:STOP:STEP (STOP excluded) over any parameter (flag name or
+    /// preset key); several sweeps give their cartesian product
+    #[arg(long, value_name = "KEY=VALUES")]
+    pub sweep: Vec<String>,
+    /// A TOML manifest: base preset, [set] overrides, [sweep] tables, [[job]] entries
+    #[arg(long, value_name = "FILE.toml")]
+    pub manifest: Option<PathBuf>,
+    /// Output folder (created if missing); with --merge-index, where the merged index goes
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub dir: Option<PathBuf>,
+    /// File name template: {index} and {KEY} for any key (default: the index and every swept key)
+    #[arg(long, value_name = "TEMPLATE")]
+    pub name: Option<String>,
+    /// Files per job: png, tif, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp,
+    /// preview (default png)
+    #[arg(long, value_delimiter = ',')]
+    pub format: Vec<String>,
+    /// Jobs computed at once (default: cores, limited by memory)
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1)
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Keep jobs whose files and sidecar are complete and match the job's parameters
+    #[arg(long)]
+    pub resume: bool,
+    /// Merge the shard indexes found in these folders into one index.csv and index.json
+    #[arg(long, value_name = "DIR", num_args = 1..)]
+    pub merge_index: Vec<PathBuf>,
+    /// How meshes, raw height maps and tiles are written
+    #[command(flatten)]
+    pub export: ExportArgs,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Worker threads (default: all cores); results do not depend on it
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}
+
+/// The `batch` record of a job's sidecar.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobRecord {
+    /// The job's number in the whole batch, from 0.
+    pub job: usize,
+    /// Jobs in the batch.
+    pub jobs: usize,
+    pub name: String,
+    /// Hash of what fixes the job's files: version, parameters (with the batch's
+    /// mapping), file names and export options.
+    pub hash: String,
+    /// The job's value of each swept key.
+    pub values: BTreeMap<String, String>,
+}
+
+/// `DIR/batch.json`: what every shard of the batch shares.
+#[derive(Debug, Serialize, Deserialize)]
+struct BatchDoc {
+    tool: String,
+    version: String,
+    jobs: usize,
+    /// Hash of the job list before the mapping (names and parameters).
+    plan: String,
+    name_template: String,
+    formats: Vec<String>,
+    keys: Vec<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mapping_min_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mapping_max_m: Option<f64>,
+    mapping_source: String,
+}
+
+/// Most bytes of fields the first pass keeps for writing (a cluster node's memory may be
+/// shared by many tasks, whatever `MemAvailable` says).
+const KEEP_MAX_BYTES: u64 = 512 << 20;
+
+/// The mapping source recorded in sidecars of jobs whose range the batch computed.
+const BATCH_RANGE: &str = "min..max over every job of the batch";
+
+/// A hash of `bytes` as 16 hex digits (the project's fixed hash, 8 bytes a word).
+fn hash_hex(bytes: &[u8]) -> String {
+    let mut words: Vec<u64> = bytes
+        .chunks(8)
+        .map(|c| {
+            let mut w = [0u8; 8];
+            w[..c.len()].copy_from_slice(c);
+            u64::from_le_bytes(w)
+        })
+        .collect();
+    words.push(bytes.len() as u64);
+    format!("{:016x}", crate::rng::hash_words(&words))
+}
+
+/// One job, resolved.
+struct Job {
+    index: usize,
+    name: String,
+    /// The parameters, or why they are bad.
+    params: std::result::Result<Params, String>,
+    values: BTreeMap<String, String>,
+}
+
+impl Job {
+    fn paths(&self, dir: &Path, suffixes: &[String]) -> Vec<PathBuf> {
+        suffixes
+            .iter()
+            .map(|s| dir.join(format!("{}.{s}", self.name)))
+            .collect()
+    }
+}
+
+/// The file name suffix of each `--format` entry, and whether one is a height output
+/// (which carries the sidecar).
+fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
+    let mut out: Vec<String> = Vec::new();
+    let mut height = false;
+    for f in formats {
+        let f = f.trim().to_ascii_lowercase();
+        let suffix = match FileKind::parse(&f) {
+            Ok(FileKind::Png) | Ok(FileKind::Tif) => {
+                height = true;
+                f.clone()
+            }
+            Ok(k) => k.suffix().to_string(),
+            Err(_) => {
+                Format::from_path(Path::new(&format!("x.{f}"))).map_err(|_| {
+                    Error::Param(ParamError {
+                        name: "--format".into(),
+                        allowed: "png, tif, tiff, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp or preview".into(),
+                        got: f.clone(),
+                    })
+                })?;
+                height = true;
+                f.clone()
+            }
+        };
+        if !out.contains(&suffix) {
+            out.push(suffix);
+        }
+    }
+    if !height {
+        return Err(Error::Param(ParamError {
+            name: "--format".into(),
+            allowed: "a list with at least one height output (png, tif, exr, r16, r32, raw, obj or glb), which carries the job's sidecar".into(),
+            got: formats.join(","),
+        }));
+    }
+    Ok(out)
+}
+
+pub fn run(args: BatchArgs) -> Result<()> {
+    crate::app::set_threads(args.threads)?;
+    if !args.merge_index.is_empty() {
+        let out = args
+            .dir
+            .clone()
+            .unwrap_or_else(|| args.merge_index[0].clone());
+        let merged = index::merge(&args.merge_index, &out)?;
+        if !args.quiet {
+            let failed = merged
+                .rows
+                .iter()
+                .filter(|r| r.status == Status::Failed)
+                .count();
+            eprintln!(
+                "merged {} jobs ({} failed) into {}",
+                merged.rows.len(),
+                failed,
+                out.join("index.csv").display()
+            );
+        }
+        return Ok(());
+    }
+    let dir = args.dir.clone().ok_or_else(|| {
+        Error::Param(ParamError {
+            name: "-o".into(),
+            allowed: "the output folder of the batch".into(),
+            got: "nothing".into(),
+        })
+    })?;
+    let manifest = match &args.manifest {
+        Some(p) => Manifest::load(p)?,
+        None => Manifest::default(),
+    };
+    let formats: Vec<String> = match (&args.format, &manifest.format) {
+        (f, _) if !f.is_empty() => f.clone(),
+        (_, Some(f)) => f.clone(),
+        _ => vec!["png".into()],
+    };
+    let suffixes = suffixes(&formats)?;
+    let options = ExportOptions::from_args(&args.export)?;
+    let shard = match &args.shard {
+        Some(s) => Shard::parse(s)?,
+        None => Shard::all(),
+    };
+
+    // The job list: base assignments, then each job's.
+    let mut sweeps = manifest.sweeps.clone();
+    for s in &args.sweep {
+        let s = Sweep::parse(s)?;
+        plan::check_key(&s.key, &s.values[0], &s.origin)?;
+        sweeps.push(s);
+    }
+    let mut base = manifest.set.clone();
+    for s in &args.field.set {
+        base.push(Assignment::parse_set(s)?);
+    }
+    for (flag, value) in args.field.flags() {
+        base.push(Assignment::flag(flag, value));
+    }
+    let preset = args.field.preset.clone().or(manifest.preset.clone());
+    let entries = if manifest.jobs.is_empty() {
+        vec![JobSpec {
+            preset: None,
+            assignments: Vec::new(),
+        }]
+    } else {
+        manifest.jobs.clone()
+    };
+    let specs = plan::product(&entries, &sweeps)?;
+    let mut keys: Vec<String> = Vec::new();
+    for k in entries
+        .iter()
+        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
+        .chain(sweeps.iter().map(|s| &s.key))
+    {
+        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
+            keys.push(k.clone());
+        }
+    }
+    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
+        Some(t) => NameTemplate::parse(t)?,
+        None => NameTemplate::default_for(&keys),
+    };
+    let total = specs.len();
+    let mut all: Vec<Job> = specs
+        .iter()
+        .enumerate()
+        .map(|(index, spec)| {
+            let mut assignments = base.clone();
+            assignments.extend(spec.assignments.iter().cloned());
+            let params =
+                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
+                    .map_err(|e| e.to_string());
+            // A key's value: the resolved one, or as typed when the job is bad.
+            let typed = |k: &str| {
+                spec.assignments
+                    .iter()
+                    .rev()
+                    .find(|a| canonical_key(&a.key) == canonical_key(k))
+                    .map(|a| a.value.clone())
+            };
+            let value = |k: &str| match &params {
+                Ok(p) => plan::value_text(p, k)
+                    .or_else(|| typed(k))
+                    .unwrap_or_default(),
+                Err(_) => typed(k).unwrap_or_default(),
+            };
+            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
+            let name = template.render(index, total, value);
+            Job {
+                index,
+                name,
+                params,
+                values,
+            }
+        })
+        .collect();
+    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
+    for j in &all {
+        if let Some(first) = names.insert(&j.name, j.index) {
+            return Err(Error::Set {
+                origin: format!("--name {}", template.text),
+                message: format!(
+                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
+                    j.index, j.name
+                ),
+            }
+            .into());
+        }
+    }
+    let plan_hash = {
+        let text: Vec<String> = all
+            .iter()
+            .map(|j| match &j.params {
+                Ok(p) => format!(
+                    "{}\n{}",
+                    j.name,
+                    serde_json::to_string(p).unwrap_or_default()
+                ),
+                Err(e) => format!("{}\n{e}", j.name),
+            })
+            .collect();
+        hash_hex(
+            format!(
+                "{}\n{:?}\n{}",
+                text.join("\n"),
+                suffixes,
+                env!("CARGO_PKG_VERSION")
+            )
+            .as_bytes(),
+        )
+    };
+
+    std::fs::create_dir_all(&dir).map_err(|e| Error::Output {
+        path: dir.clone(),
+        message: format!("cannot create the folder: {e}"),
+    })?;
+    let doc_path = dir.join("batch.json");
+    let earlier: Option<BatchDoc> = if args.resume {
+        std::fs::read(&doc_path)
+            .ok()
+            .and_then(|b| serde_json::from_slice(&b).ok())
+            .filter(|d: &BatchDoc| d.plan == plan_hash)
+    } else {
+        None
+    };
+
+    // One 16-bit mapping for the whole batch: every job without a height range of its
+    // own gets the range over all those jobs' heights (a first pass without files, over
+    // every job of every shard, so shards agree), or the earlier run's.
+    let uses_mapping = suffixes
+        .iter()
+        .any(|s| s == "png" || s == "r16" || s == "raw");
+    let needs: Vec<usize> = all
+        .iter()
+        .filter(|j| {
+            j.params
+                .as_ref()
+                .is_ok_and(|p| p.output.height_range.is_none())
+        })
+        .map(|j| j.index)
+        .collect();
+    let per_job = all
+        .iter()
+        .filter_map(|j| j.params.as_ref().ok())
+        .map(|p| jobs::field_bytes(p, suffixes.iter().filter(|s| s.contains('.')).count()))
+        .max()
+        .unwrap_or(1);
+    let workers = jobs::parallel_jobs(args.jobs, per_job);
+    let started = Instant::now();
+    let computed: Mutex<BTreeMap<usize, Synthesis>> = Mutex::new(BTreeMap::new());
+    let mapping: Option<HeightMapping> = if uses_mapping && !needs.is_empty() {
+        match earlier
+            .as_ref()
+            .and_then(|e| e.mapping_min_m.zip(e.mapping_max_m))
+        {
+            Some((lo, hi)) => Some(HeightMapping {
+                min_m: lo,
+                max_m: hi,
+            }),
+            None => {
+                if !args.quiet {
+                    eprintln!(
+                        "first pass: the 16-bit mapping over the heights of {} jobs",
+                        needs.len()
+                    );
+                }
+                // The fields of this run's jobs are kept for writing while they fit in a
+                // quarter of the available memory and 512 MiB; the others are computed again.
+                // (Maps, previews and meshes need derived fields: theirs are recomputed.)
+                let plain = !suffixes
+                    .iter()
+                    .any(|s| s.contains('.') || s == "obj" || s == "glb");
+                let budget = if plain {
+                    (jobs::available_memory().unwrap_or(0) / 4).min(KEEP_MAX_BYTES)
+                } else {
+                    0
+                };
+                let reserved = std::sync::atomic::AtomicU64::new(0);
+                let ranges = jobs::run_pool(needs.len(), workers, |i| {
+                    let job = needs[i];
+                    let p = all[job].params.as_ref().expect("resolved");
+                    let s = crate::field::Synthesizer::new(p, Default::default(), false).ok()?;
+                    let syn = s.frame(p.time_s);
+                    let st = syn.grid.stats();
+                    let bytes = syn.grid.data.len() as u64 * 4;
+                    let keep = shard.contains(job)
+                        && reserved.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed) + bytes
+                            <= budget;
+                    if keep {
+                        computed
+                            .lock()
+                            .expect("no worker panicked")
+                            .insert(job, syn);
+                    }
+                    Some((st.min_m, st.max_m))
+                });
+                jobs::union_range(ranges.into_iter().flatten())
+            }
+        }
+    } else {
+        None
+    };
+    if let Some(m) = mapping {
+        for &i in &needs {
+            if let Ok(p) = all[i].params.as_mut() {
+                p.output.height_range = Some(Range2([m.min_m, m.max_m]));
+            }
+        }
+    }
+    let doc = BatchDoc {
+        tool: "seasynth".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        jobs: total,
+        plan: plan_hash,
+        name_template: template.text.clone(),
+        formats: suffixes.clone(),
+        keys: keys.clone(),
+        mapping_min_m: mapping.map(|m| m.min_m),
+        mapping_max_m: mapping.map(|m| m.max_m),
+        mapping_source: match mapping {
+            Some(_) => BATCH_RANGE.into(),
+            None if uses_mapping => "each job's --height-range".into(),
+            None => "no 16-bit heights written".into(),
+        },
+    };
+    Staged::create(&doc_path)?.write_with(|w| {
+        serde_json::to_writer_pretty(&mut *w, &doc)?;
+        std::io::Write::write_all(w, b"\n")
+    })?;
+
+    let export_key = format!("{options:?}");
+    let records: Vec<JobRecord> = all
+        .iter()
+        .map(|j| {
+            let files: Vec<String> = suffixes.iter().map(|s| format!("{}.{s}", j.name)).collect();
+            let params = j
+                .params
+                .as_ref()
+                .map(|p| serde_json::to_string(p).unwrap_or_default());
+            let text = format!(
+                "{}\n{:?}\n{:?}\n{export_key}",
+                env!("CARGO_PKG_VERSION"),
+                params,
+                files
+            );
+            JobRecord {
+                job: j.index,
+                jobs: total,
+                name: j.name.clone(),
+                hash: hash_hex(text.as_bytes()),
+                values: j.values.clone(),
+            }
+        })
+        .collect();
+    let batch_hash = hash_hex(
+        records
+            .iter()
+            .map(|r| format!("{} {}", r.name, r.hash))
+            .collect::<Vec<_>>()
+            .join("\n")
+            .as_bytes(),
+    );
+    let mine: Vec<usize> = (0..total).filter(|&i| shard.contains(i)).collect();
+    remove_stale_temporaries(&dir, mine.iter().map(|&i| all[i].name.as_str()))?;
+
+    // Jobs complete from an earlier run are kept, with the statistics of their sidecar.
+    let mut rows: BTreeMap<usize, Row> = BTreeMap::new();
+    if args.resume {
+        for &i in &mine {
+            if let Some(row) = kept_row(&all[i], &suffixes, &records[i], &dir) {
+                rows.insert(i, row);
+            }
+        }
+    }
+    let todo: Vec<usize> = mine
+        .iter()
+        .copied()
+        .filter(|i| !rows.contains_key(i))
+        .collect();
+    if !args.quiet {
+        let m = match mapping {
+            Some(m) => format!(", 16-bit mapping {:.4}..{:.4} m", m.min_m, m.max_m),
+            None => String::new(),
+        };
+        let of = if shard.n > 1 {
+            format!(" (shard {shard}: {} of them)", mine.len())
+        } else {
+            String::new()
+        };
+        eprintln!(
+            "batch of {total} jobs{of} in {}: {} to do, {} kept, {workers} at once{m}",
+            dir.display(),
+            todo.len(),
+            rows.len()
+        );
+    }
+    let progress = Progress::new(todo.len(), "jobs", args.quiet, true);
+    let done = jobs::run_pool(todo.len(), workers, |t| {
+        let i = todo[t];
+        let job = &all[i];
+        let paths = job.paths(&dir, &suffixes);
+        let start = Instant::now();
+        let result = match &job.params {
+            Err(e) => Err((e.clone(), true)),
+            Ok(p) => {
+                let extras = SidecarExtras {
+                    mapping_source: mapping.is_some().then_some(BATCH_RANGE),
+                    batch: Some(&records[i]),
+                };
+                let syn = computed.lock().expect("no worker panicked").remove(&i);
+                write_field(p, &paths, &options, &extras, syn).map_err(|e| {
+                    let usage = e.downcast_ref::<Error>().is_some_and(|e| e.is_usage());
+                    (format!("{e:#}"), usage)
+                })
+            }
+        };
+        let seconds = start.elapsed().as_secs_f64();
+        let label = format!("job {i} {}", job.name);
+        let (row, usage) = match result {
+            Ok(w) => {
+                progress.finished(&format!(
+                    "{label}: ok, {seconds:.3} s, Hs {:.3} m",
+                    w.stats.hs_m
+                ));
+                (
+                    Row {
+                        job: i,
+                        name: job.name.clone(),
+                        status: Status::Ok,
+                        params: job.values.clone(),
+                        files: complete_files(&job.name, &suffixes, &records[i].hash, &dir)
+                            .map(|(f, _)| f)
+                            .unwrap_or_default(),
+                        stats: Some(row_stats(&w.stats)),
+                        seconds: Some(seconds),
+                        hash: Some(records[i].hash.clone()),
+                        error: None,
+                    },
+                    true,
+                )
+            }
+            Err((message, usage)) => {
+                progress.println(&format!("Error: {label} failed: {message}"));
+                if args.quiet {
+                    eprintln!("Error: {label} failed: {message}");
+                }
+                progress.finished(&format!("{label}: FAILED"));
+                (
+                    Row {
+                        job: i,
+                        name: job.name.clone(),
+                        status: Status::Failed,
+                        params: job.values.clone(),
+                        files: Vec::new(),
+                        stats: None,
+                        seconds: Some(seconds),
+                        hash: None,
+                        error: Some(message),
+                    },
+                    usage,
+                )
+            }
+        };
+        (row, usage)
+    });
+    progress.finish();
+    let mut io_failure = false;
+    for (row, usage) in done {
+        io_failure |= row.status == Status::Failed && !usage;
+        rows.insert(row.job, row);
+    }
+    let index = Index {
+        tool: "seasynth".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        batch: batch_hash,
+        jobs: total,
+        shard: (shard.n > 1).then(|| shard.to_string()),
+        keys,
+        rows: rows.into_values().collect(),
+    };
+    let stem = index::stem((shard.n > 1).then_some((shard.k, shard.n)));
+    index.write(&dir, &stem)?;
+    let failed: Vec<String> = index
+        .rows
+        .iter()
+        .filter(|r| r.status == Status::Failed)
+        .map(|r| r.job.to_string())
+        .collect();
+    let secs = started.elapsed().as_secs_f64();
+    if !args.quiet {
+        eprintln!(
+            "wrote {} of {} jobs in {secs:.2} s ({:.2} jobs/s), {} kept, {} failed; index {}",
+            todo.len() - failed.len(),
+            mine.len(),
+            (todo.len() - failed.len()) as f64 / secs.max(1e-9),
+            mine.len() - todo.len(),
+            failed.len(),
+            dir.join(format!("{stem}.csv")).display()
+        );
+    }
+    if !failed.is_empty() {
+        let message = format!(
+            "{} of {} jobs failed (job {}); the others were written, see {stem}.csv",
+            failed.len(),
+            mine.len(),
+            failed.join(", ")
+        );
+        return Err(if io_failure {
+            Error::io(&dir, std::io::Error::other(message))
+        } else {
+            Error::Input { path: dir, message }
+        }
+        .into());
+    }
+    Ok(())
+}
+
+fn row_stats(s: &crate::grid::Stats) -> RowStats {
+    RowStats {
+        hs_m: s.hs_m,
+        min_m: s.min_m,
+        max_m: s.max_m,
+        mean_m: s.mean_m,
+        std_m: s.std_m,
+    }
+}
+
+/// The files of a complete job, relative to the folder, and its statistics, from its
+/// sidecar `DIR/NAME.json`: the files the sidecar lists (the height outputs, or their
+/// tiles), the tile index, the maps and previews (`NAME.KIND.ext`, which the sidecar does
+/// not list), then the sidecar. `None` unless the sidecar holds `hash` as the job's
+/// `batch.hash` and every one of those files is there.
+fn complete_files(
+    name: &str,
+    suffixes: &[String],
+    hash: &str,
+    dir: &Path,
+) -> Option<(Vec<String>, crate::grid::Stats)> {
+    let side = format!("{name}.json");
+    let doc: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join(&side)).ok()?).ok()?;
+    if doc.pointer("/batch/hash")?.as_str()? != hash {
+        return None;
+    }
+    let mut files = Vec::new();
+    for f in doc.get("files")?.as_array()? {
+        files.push(f.get("file")?.as_str()?.to_string());
+    }
+    if let Some(t) = doc.get("tiles_index").and_then(|t| t.as_str()) {
+        files.push(t.to_string());
+    }
+    files.extend(
+        suffixes
+            .iter()
+            .filter(|s| s.contains('.'))
+            .map(|s| format!("{name}.{s}")),
+    );
+    files.push(side);
+    if !files.iter().all(|f| dir.join(f).is_file()) {
+        return None;
+    }
+    let stats = serde_json::from_value(doc.get("stats")?.clone()).ok()?;
+    Some((files, stats))
+}
+
+/// The index row of a job complete from an earlier run ([`complete_files`]).
+fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
+    let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
+    Some(Row {
+        job: job.index,
+        name: job.name.clone(),
+        status: Status::Kept,
+        params: job.values.clone(),
+        files,
+        stats: Some(row_stats(&stats)),
+        seconds: None,
+        hash: Some(record.hash.clone()),
+        error: None,
+    })
+}
+
+/// Removes the temporary files a killed run left for these jobs (`.NAME.….part`, the
+/// staging names of `export::Staged`). Only this run's jobs: shards sharing the folder
+/// keep theirs.
+fn remove_stale_temporaries<'a>(dir: &Path, names: impl Iterator<Item = &'a str>) -> Result<()> {
+    let stale: Vec<PathBuf> = match std::fs::read_dir(dir) {
+        Ok(entries) => entries
+            .filter_map(|e| e.ok())
+            .map(|e| e.path())
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with('.') && n.ends_with(".part"))
+            })
+            .collect(),
+        Err(e) => return Err(Error::io(dir, e).into()),
+    };
+    if stale.is_empty() {
+        return Ok(());
+    }
+    let names: std::collections::HashSet<&str> = names.collect();
+    for p in stale {
+        let file = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        // `.NAME.SUFFIX.RANDOM.part` or a tile's `.NAME_x0_y0.SUFFIX.RANDOM.part`.
+        let inner = &file[1..file.len() - ".part".len()];
+        let ours = names.iter().any(|n| {
+            inner
+                .strip_prefix(n)
+                .is_some_and(|rest| rest.starts_with('.') || rest.starts_with("_x"))
+        });
+        if ours {
+            std::fs::remove_file(&p).map_err(|e| Error::io(&p, e))?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_give_suffixes_and_need_a_height_output() {
+        let s = suffixes(&["png".into(), "normal".into(), "tif".into(), "obj".into()]).unwrap();
+        assert_eq!(s, ["png", "normal.png", "tif", "obj"]);
+        assert!(
+            suffixes(&["normal".into()]).is_err(),
+            "no sidecar without a height output"
+        );
+        let e = suffixes(&["gif".into()]).unwrap_err().to_string();
+        assert!(e.contains("gif") && e.contains("png"), "{e}");
+    }
+
+    #[test]
+    fn stale_temporaries_of_other_jobs_are_left_alone() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path();
+        for f in [
+            ".0_a=1.png.X1.part",
+            ".0_a=1_x0_y1.obj.X2.part",
+            ".1_a=2.png.X3.part",
+            ".0_a=10.png.X4.part",
+            "0_a=1.png",
+        ] {
+            std::fs::write(p.join(f), b"x").unwrap();
+        }
+        remove_stale_temporaries(p, ["0_a=1"].into_iter()).unwrap();
+        let mut left: Vec<String> = std::fs::read_dir(p)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            [".0_a=10.png.X4.part", ".1_a=2.png.X3.part", "0_a=1.png"],
+            "only job 0_a=1's staging files go"
+        );
+    }
+}

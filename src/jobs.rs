@@ -1,0 +1,253 @@
+//! What the commands that compute many fields share (`animate`'s frames, `batch`'s
+//! jobs): the per-field file kinds of `--format`, how many fields are computed at once
+//! under the available memory, a worker pool that runs them, one 16-bit mapping over all
+//! of them, and the progress display.
+
+use std::io::IsTerminal;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use crate::config::Params;
+use crate::error::ParamError;
+use crate::export::HeightMapping;
+use crate::export::maps::MapKind;
+
+/// One file kind of a frame or job, as `--format` names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// 16-bit height PNG.
+    Png,
+    /// Float height TIFF.
+    Tif,
+    /// A map of the wave state (normal, foam, Jacobian, displacement).
+    Map(MapKind),
+    /// A rendered perspective view (`seasynth render`'s default camera).
+    Preview,
+}
+
+/// The names `FileKind::parse` accepts, for error messages.
+pub const FILE_KINDS: &str = "png, tif, normal, foam, jacobian, disp or preview";
+
+impl FileKind {
+    pub fn parse(s: &str) -> Result<Self, ParamError> {
+        Ok(match s.trim() {
+            "png" => FileKind::Png,
+            "tif" | "tiff" => FileKind::Tif,
+            "normal" => FileKind::Map(MapKind::Normal),
+            "foam" => FileKind::Map(MapKind::Foam),
+            "jacobian" => FileKind::Map(MapKind::Jacobian),
+            "disp" => FileKind::Map(MapKind::Displacement),
+            "preview" => FileKind::Preview,
+            other => {
+                return Err(ParamError {
+                    name: "--format".into(),
+                    allowed: FILE_KINDS.into(),
+                    got: other.into(),
+                });
+            }
+        })
+    }
+
+    /// What follows `NAME.` in the file name.
+    pub fn suffix(&self) -> &'static str {
+        match self {
+            FileKind::Png => "png",
+            FileKind::Tif => "tif",
+            FileKind::Map(MapKind::Normal) => "normal.png",
+            FileKind::Map(MapKind::Foam) => "foam.png",
+            FileKind::Map(MapKind::Jacobian) => "jacobian.tif",
+            FileKind::Map(MapKind::Displacement) => "disp.tif",
+            FileKind::Preview => "preview.png",
+        }
+    }
+}
+
+/// A rough peak-memory estimate of computing and writing one field of `params` with
+/// `maps` derived maps, bytes.
+pub fn field_bytes(params: &Params, maps: usize) -> u64 {
+    let n = params.grid_spec().len() as u64;
+    // Height, spectrum and transform buffers, plus up to eight derived fields.
+    n * (24 + maps as u64 * 20)
+}
+
+/// Available memory from /proc/meminfo (Linux), bytes.
+pub fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// How many fields to compute at once: `requested` (default: the worker threads), at most
+/// as many as fit twice into the available memory by the estimate `per_job_bytes`, and at
+/// least one.
+pub fn parallel_jobs(requested: Option<usize>, per_job_bytes: u64) -> usize {
+    let by_memory = available_memory()
+        .map(|m| (m / 2 / per_job_bytes.max(1)).max(1) as usize)
+        .unwrap_or(1);
+    requested
+        .unwrap_or_else(rayon::current_num_threads)
+        .min(by_memory)
+        .max(1)
+}
+
+/// Runs `f(0) … f(count − 1)` on `workers` threads, each taking the next index when it is
+/// free, and returns the results in index order. Each call may itself use the rayon pool.
+pub fn run_pool<T: Send>(count: usize, workers: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<T>>> = Mutex::new((0..count).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..workers.clamp(1, count.max(1)) {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= count {
+                        break;
+                    }
+                    let r = f(i);
+                    results.lock().expect("no worker panicked holding the lock")[i] = Some(r);
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .expect("no worker panicked holding the lock")
+        .into_iter()
+        .map(|r| r.expect("every index was run"))
+        .collect()
+}
+
+/// One 16-bit mapping over many fields: the smallest min and largest max of `ranges`
+/// (`None` when there is none).
+pub fn union_range(ranges: impl IntoIterator<Item = (f64, f64)>) -> Option<HeightMapping> {
+    let (lo, hi) = ranges
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (a, b)| {
+            (lo.min(a), hi.max(b))
+        });
+    (lo <= hi).then_some(HeightMapping {
+        min_m: lo,
+        max_m: hi,
+    })
+}
+
+/// Progress of many fields: an indicatif bar on a terminal, and, when `plain` is asked
+/// and stderr is not a terminal, one plain line per finished field with the ETA.
+pub struct Progress {
+    bar: indicatif::ProgressBar,
+    plain: bool,
+    total: usize,
+    done: AtomicUsize,
+    started: Instant,
+}
+
+impl Progress {
+    /// `unit`: what is counted ("frames", "jobs"). Nothing is shown when `quiet`.
+    pub fn new(total: usize, unit: &str, quiet: bool, plain: bool) -> Self {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = if quiet || !terminal {
+            indicatif::ProgressBar::hidden()
+        } else {
+            let b = indicatif::ProgressBar::new(total as u64);
+            b.set_style(
+                indicatif::ProgressStyle::with_template(&format!(
+                    "{{bar:40}} {{pos}}/{{len}} {unit}, {{per_sec}}, ETA {{eta}} {{msg}}"
+                ))
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            b
+        };
+        Self {
+            bar,
+            plain: plain && !quiet && !terminal,
+            total,
+            done: AtomicUsize::new(0),
+            started: Instant::now(),
+        }
+    }
+
+    /// One more field finished; `status` describes it (shown beside the bar, or as a line).
+    pub fn finished(&self, status: &str) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        if self.plain {
+            let secs = self.started.elapsed().as_secs_f64();
+            let eta = secs / done as f64 * (self.total - done.min(self.total)) as f64;
+            eprintln!("[{done}/{}] {status} (ETA {eta:.0} s)", self.total);
+        } else {
+            self.bar.set_message(status.to_string());
+        }
+        self.bar.inc(1);
+    }
+
+    /// Prints a line above the bar (or as it is, without one), unless quiet.
+    pub fn println(&self, line: &str) {
+        if self.bar.is_hidden() {
+            if self.plain {
+                eprintln!("{line}");
+            }
+        } else {
+            self.bar.println(line);
+        }
+    }
+
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pool_runs_every_index_once_and_keeps_their_order() {
+        for workers in [1, 3, 8] {
+            let calls = AtomicUsize::new(0);
+            let out = run_pool(17, workers, |i| {
+                calls.fetch_add(1, Ordering::Relaxed);
+                i * i
+            });
+            assert_eq!(calls.load(Ordering::Relaxed), 17, "{workers} workers");
+            assert_eq!(out, (0..17).map(|i| i * i).collect::<Vec<_>>());
+        }
+        assert!(run_pool(0, 2, |i| i).is_empty());
+    }
+
+    #[test]
+    fn parallel_jobs_stay_under_the_available_memory() {
+        assert_eq!(parallel_jobs(Some(3), 1), 3, "small jobs: as many as asked");
+        assert_eq!(
+            parallel_jobs(Some(3), u64::MAX / 4),
+            1,
+            "huge jobs: one at a time"
+        );
+        assert_eq!(parallel_jobs(Some(0), 1), 1, "at least one");
+        if let Some(m) = available_memory() {
+            assert_eq!(
+                parallel_jobs(Some(8), m / 5),
+                2,
+                "two fit twice into {m} bytes"
+            );
+        }
+    }
+
+    #[test]
+    fn the_union_range_spans_every_field() {
+        let m = union_range([(-1.0, 0.5), (-0.25, 2.0), (0.0, 1.0)]).unwrap();
+        assert_eq!((m.min_m, m.max_m), (-1.0, 2.0));
+        assert!(union_range(std::iter::empty()).is_none());
+    }
+
+    #[test]
+    fn file_kinds_round_trip_through_their_names() {
+        for name in [
+            "png", "tif", "normal", "foam", "jacobian", "disp", "preview",
+        ] {
+            let k = FileKind::parse(name).unwrap();
+            assert!(k.suffix().starts_with(name), "{name} → {}", k.suffix());
+        }
+        assert!(FileKind::parse("gif").is_err());
+    }
+}
