@@ -100,6 +100,10 @@ fn generate(args: GenerateArgs) -> Result<()> {
             .into());
         }
     }
+    // A trochoid field written only to PNG and TIFF is streamed: it may exceed memory.
+    if crate::stream::applies(&params, &paths) {
+        return crate::stream::generate(&params, &paths, args.quiet);
+    }
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.
     let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();

@@ -19,7 +19,7 @@ pub struct TrochoidParams {
     /// Side of the matrix on which the directional spectrum is sampled (the paper: 64).
     pub matrix: usize,
     /// Period of the virtual tile whose Fourier grid the matrix is, m (wavevector spacing
-    /// 2π/this); default 8 peak wavelengths (the matrix then reaches 4 kp).
+    /// 2π/this); default 3 peak wavelengths (the matrix then reaches ±10 kp).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub matrix_extent_m: Option<f64>,
     /// Sharpness k·r of the trochoid profile, 0 ≤ kr < 1 (0: a cosine; → 1: a cusp).

@@ -227,6 +227,7 @@ impl Synthesizer {
         };
         let trochoid = match params.method {
             Method::Trochoid => {
+                crate::stream::check_in_memory(params)?;
                 let sea = trochoid::TrochoidSea::new(params)?;
                 info.trochoid = Some(sea.info().clone());
                 Some(sea)

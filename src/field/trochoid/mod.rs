@@ -104,8 +104,13 @@ pub struct TrochoidSea {
     info: TrochoidInfo,
 }
 
-/// Side of the matrix's virtual tile, m: `trochoid.matrix_extent_m`, else 8 peak
-/// wavelengths (physical seas, Phillips), else 8 `fractal.rolloff_m` or the grid's extent.
+/// The default side of the matrix's virtual tile, in peak wavelengths: Δk = kp/3, so the
+/// matrix reaches ±10 kp and its 48 strongest cells hold about 3/4 of the variance.
+pub const MATRIX_PEAK_WAVELENGTHS: f64 = 3.0;
+
+/// Side of the matrix's virtual tile, m: `trochoid.matrix_extent_m`, else
+/// [`MATRIX_PEAK_WAVELENGTHS`] peak wavelengths (physical seas, Phillips), else as many
+/// `fractal.rolloff_m`, or the grid's extent.
 fn matrix_extent_m(params: &Params) -> Result<f64> {
     if let Some(l) = params.trochoid.matrix_extent_m {
         return Ok(l);
@@ -113,16 +118,16 @@ fn matrix_extent_m(params: &Params) -> Result<f64> {
     let tau = std::f64::consts::TAU;
     if let Some(sea) = crate::field::sea_model(params)? {
         let kp = sea.dispersion.wavenumber(tau * sea.freq.peak_hz());
-        return Ok(8.0 * tau / kp);
+        return Ok(MATRIX_PEAK_WAVELENGTHS * tau / kp);
     }
     Ok(match params.spectrum.model {
         SpectrumModel::Phillips => {
             // The radial density k·P(k) of Phillips' spectrum peaks at k = √(2/3)/L.
             let l = crate::field::phillips(params).largest_wave_m();
-            8.0 * tau * l / (2.0f64 / 3.0).sqrt()
+            MATRIX_PEAK_WAVELENGTHS * tau * l / (2.0f64 / 3.0).sqrt()
         }
         _ => match params.fractal.rolloff_m {
-            Some(r) => 8.0 * r,
+            Some(r) => MATRIX_PEAK_WAVELENGTHS * r,
             None => params.grid.extent_m.0[0].max(params.grid.extent_m.0[1]),
         },
     })
