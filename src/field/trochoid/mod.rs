@@ -264,10 +264,12 @@ impl TrochoidSea {
                     attenuation((c.k.0.abs() * dx).max(c.k.1.abs() * dy) / std::f64::consts::PI)
                 });
                 let wt = if time_s == 0.0 { 0.0 } else { c.omega * t };
+                // Positions on the table: (phase/2π + 1/2)·LUT_SIZE.
+                let n = profile::LUT_SIZE as f64;
                 (w > 0.0).then(|| Wave {
-                    ax: c.k.0 / tau,
-                    ay: c.k.1 / tau,
-                    c0: (c.phase - wt) / tau,
+                    ax: c.k.0 / tau * n,
+                    ay: c.k.1 / tau * n,
+                    c0: (c.phase - wt) / tau * n + 0.5 * n,
                     amp: (c.amplitude_m * w) as f32,
                 })
             })
@@ -326,7 +328,7 @@ pub fn attenuation(q: f64) -> f64 {
     1.0 - t * t * (3.0 - 2.0 * t)
 }
 
-/// One component at one time: v's phase in turns is ax·x + ay·y + c0.
+/// One component at one time: its position on the profile's table is ax·x + ay·y + c0.
 #[derive(Debug, Clone, Copy)]
 struct Wave {
     ax: f64,
@@ -343,7 +345,7 @@ struct FrameOctave {
 
 /// The sea at one time and sampling: evaluates rows and points.
 pub struct Frame<'a> {
-    table: &'a [f32],
+    table: &'a profile::Table,
     waves: Vec<Wave>,
     octaves: Vec<FrameOctave>,
     /// Turbulence displacement along x and y at this time, m, and along the third axis,
@@ -418,12 +420,20 @@ impl Frame<'_> {
     }
 }
 
-/// `out[i] += amp·v(ax·xs[i] + cy)` (v's phase in turns).
-fn wave_run(isa: Isa, table: &[f32], xs: &[f64], ax: f64, cy: f64, amp: f32, out: &mut [f32]) {
+/// `out[i] += amp·v(·)` at table position ax·xs[i] + cy (see [`profile::lookup_pos`]).
+fn wave_run(
+    isa: Isa,
+    table: &profile::Table,
+    xs: &[f64],
+    ax: f64,
+    cy: f64,
+    amp: f32,
+    out: &mut [f32],
+) {
     #[inline(always)]
-    fn body(table: &[f32], xs: &[f64], ax: f64, cy: f64, amp: f32, out: &mut [f32]) {
+    fn body(table: &profile::Table, xs: &[f64], ax: f64, cy: f64, amp: f32, out: &mut [f32]) {
         for (o, &x) in out.iter_mut().zip(xs) {
-            *o += amp * profile::lookup(table, ax * x + cy);
+            *o += amp * profile::lookup_pos(table, ax * x + cy);
         }
     }
     match isa {
@@ -434,7 +444,14 @@ fn wave_run(isa: Isa, table: &[f32], xs: &[f64], ax: f64, cy: f64, amp: f32, out
     }
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn wave_avx2(table: &[f32], xs: &[f64], ax: f64, cy: f64, amp: f32, out: &mut [f32]) {
+    unsafe fn wave_avx2(
+        table: &profile::Table,
+        xs: &[f64],
+        ax: f64,
+        cy: f64,
+        amp: f32,
+        out: &mut [f32],
+    ) {
         body(table, xs, ax, cy, amp, out)
     }
 }

@@ -30,8 +30,12 @@ pub struct Profile {
     sharpness: f64,
     /// v at phase turns t_j = −1/2 + j/LUT_SIZE, j = 0..=LUT_SIZE + 1 (wrapping: the last
     /// two repeat the first two, so an interpolation never reads past the end).
-    table: Vec<f32>,
+    table: Box<Table>,
 }
+
+/// The table with its two wrapped entries: a fixed length, so reads need no bounds checks
+/// and the lookup loop vectorizes.
+pub type Table = [f32; LUT_SIZE + 2];
 
 /// θ of φ ∈ [−π, π] on the trochoid of sharpness kr < 1: θ − kr sin θ = φ (Newton).
 pub fn solve_theta(phi: f64, kr: f64) -> f64 {
@@ -68,7 +72,10 @@ impl Profile {
         table.push(table[1]);
         Self {
             sharpness: kr,
-            table,
+            table: table
+                .into_boxed_slice()
+                .try_into()
+                .expect("LUT_SIZE + 2 entries"),
         }
     }
 
@@ -76,7 +83,7 @@ impl Profile {
         self.sharpness
     }
 
-    pub(crate) fn table(&self) -> &[f32] {
+    pub(crate) fn table(&self) -> &Table {
         &self.table
     }
 
@@ -94,18 +101,29 @@ impl Profile {
     }
 }
 
-/// The table at phase `u` turns: s = u + 1/2 reduced to [0, 1) places the phase on the
-/// table (node j at s = j/LUT_SIZE), read with linear interpolation. IEEE operations only, the same in every path.
+/// 2^52 + 2^51: x + ROUND_MAGIC − ROUND_MAGIC rounds x (|x| < 2^51) to an integer, and
+/// the low bits of x + ROUND_MAGIC hold that integer in two's complement.
+const ROUND_MAGIC: f64 = 6_755_399_441_055_744.0;
+
+/// The table at table position `pos` = (u + 1/2)·LUT_SIZE for a phase of u turns (node j at
+/// pos ≡ j mod LUT_SIZE), read with linear interpolation. The floor of pos and its residue
+/// modulo LUT_SIZE come from the bits of pos + 2^52 + 2^51, so the loop is IEEE
+/// operations and integer masks only: the same bits in every path, and it vectorizes.
 #[inline(always)]
-pub(crate) fn lookup(table: &[f32], u: f64) -> f32 {
-    let s = u + 0.5;
-    let pos = (s - crate::field::noise3::floor_f64(s)) * LUT_SIZE as f64;
-    // pos ∈ [0, LUT_SIZE]: truncation is the floor.
-    let j = pos as i32;
-    let w = (pos - j as f64) as f32;
-    let j = (j.max(0) as usize).min(LUT_SIZE);
+pub(crate) fn lookup_pos(table: &Table, pos: f64) -> f32 {
+    let t = pos + ROUND_MAGIC;
+    let r = t - ROUND_MAGIC;
+    let below = (r > pos) as u64;
+    let j = (t.to_bits().wrapping_sub(below) as usize) & (LUT_SIZE - 1);
+    let w = (pos - (r - below as f64)) as f32;
     let (a, b) = (table[j], table[j + 1]);
     a + w * (b - a)
+}
+
+/// The table at phase `u` turns.
+#[inline(always)]
+pub(crate) fn lookup(table: &Table, u: f64) -> f32 {
+    lookup_pos(table, u * LUT_SIZE as f64 + (LUT_SIZE / 2) as f64)
 }
 
 #[cfg(test)]
