@@ -76,3 +76,67 @@ pub fn select(setup: &SpectrumSetup, size: usize, count: usize, seed: u64) -> Ve
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spectrum::{
+        DirectionalSpectrum, Dispersion, PiersonMoskowitz, Spreading, SpreadingModel,
+    };
+
+    #[test]
+    fn the_selected_components_are_the_n_largest_cells_of_the_matrix() {
+        let pm = PiersonMoskowitz::from_wind(12.0).unwrap();
+        let spreading = Spreading::new(SpreadingModel::Hasselmann, 0.0).unwrap();
+        let spectrum =
+            DirectionalSpectrum::new(Box::new(pm), spreading, 0.3, 12.0, Dispersion::Deep).unwrap();
+        let setup = SpectrumSetup {
+            spec: crate::grid::GridSpec::new(64, 64, 400.0, 400.0),
+            spectrum: &spectrum,
+            dispersion: Dispersion::Deep,
+            seed: 0,
+            time_s: 0.0,
+            loop_period_s: None,
+        };
+        let matrix = sample_matrix(&setup, 64);
+        assert_eq!(matrix.len(), 64 * 64);
+        let n = 40;
+        let chosen = select(&setup, 64, n, 7);
+        assert_eq!(chosen.len(), n);
+        // A naive reference: every cell's P, sorted, the n-th largest is the threshold.
+        let mut ps: Vec<f64> = matrix.iter().map(|c| c.1).collect();
+        ps.sort_by(|a, b| b.total_cmp(a));
+        let threshold = ps[n - 1];
+        for c in &chosen {
+            let p = matrix.iter().find(|m| m.0 == c.index).unwrap().1;
+            assert!(
+                p >= threshold,
+                "cell {:?} with P {p} below the n-th largest {threshold}",
+                c.index
+            );
+            let want = 2.0 * p.sqrt();
+            assert!(
+                (c.amplitude_m - want).abs() <= 1e-15 * want,
+                "amplitude of {:?}",
+                c.index
+            );
+            let (kx, ky) = setup.wavevector(c.index.0, c.index.1);
+            assert_eq!(c.k, (kx, ky));
+            assert_eq!(c.omega, Dispersion::Deep.omega(kx.hypot(ky)));
+            assert!((0.0..std::f64::consts::TAU).contains(&c.phase));
+        }
+        let sum_chosen: f64 = chosen.iter().map(|c| c.amplitude_m.powi(2) / 4.0).sum();
+        let sum_top: f64 = ps[..n].iter().sum();
+        assert!(
+            (sum_chosen - sum_top).abs() <= 1e-12 * sum_top,
+            "the n largest, no other"
+        );
+        // Strongest first, and the phases depend on the seed.
+        assert!(
+            chosen
+                .windows(2)
+                .all(|w| w[0].amplitude_m >= w[1].amplitude_m)
+        );
+        assert_ne!(chosen[0].phase, select(&setup, 64, n, 8)[0].phase);
+    }
+}
