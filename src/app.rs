@@ -100,10 +100,6 @@ fn generate(args: GenerateArgs) -> Result<()> {
             .into());
         }
     }
-    // A trochoid field written only to PNG and TIFF is streamed: it may exceed memory.
-    if crate::stream::applies(&params, &paths) {
-        return crate::stream::generate(&params, &paths, args.quiet);
-    }
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.
     let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
@@ -131,6 +127,11 @@ fn generate(args: GenerateArgs) -> Result<()> {
         .map(|p| Format::from_path(p))
         .collect::<Result<Vec<_>, _>>()?;
     options.check(&formats, periodic)?;
+    // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
+    // memory.
+    if staged_maps.is_empty() && crate::stream::applies(&params, &paths) {
+        return crate::stream::generate(&params, &paths, args.quiet);
+    }
     // Stage every file before computing: a bad path fails now, not after the work.
     let mut outputs = Vec::new();
     for (i, p) in paths.iter().enumerate() {
