@@ -190,6 +190,11 @@ pub fn write_field(
         .map(|p| Format::from_path(p))
         .collect::<Result<Vec<_>, _>>()?;
     options.check(&formats, periodic)?;
+    // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
+    // memory.
+    if staged_maps.is_empty() && crate::stream::applies(&params, &paths) {
+        return crate::stream::generate(&params, &paths, args.quiet);
+    }
     // Stage every file before computing: a bad path fails now, not after the work.
     let mut outputs = Vec::new();
     for (i, p) in paths.iter().enumerate() {

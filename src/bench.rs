@@ -289,10 +289,65 @@ pub fn run(args: BenchArgs) -> Result<()> {
         for (ext, bytes) in sizes {
             println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
         }
+        trochoid_rows(n, repeats, bare)?;
     }
     if args.exports {
         exports(&args.dir, repeats.min(3))?;
     }
+    Ok(())
+}
+
+/// The trochoid method (`thon-2000` preset, n² over n meters): the setup with the
+/// turbulence fit, the whole field on every thread, and the samples per second of one
+/// core for the trochoids + turbulence, the trochoids alone and the turbulence alone.
+fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
+    use crate::field::trochoid::{RowScratch, TrochoidSea};
+    let mut params = crate::config::presets::load("thon-2000")?;
+    params.grid.size = crate::config::Size2([n, n]);
+    params.grid.extent_m = crate::config::Extent2([n as f64, n as f64]);
+    let spec = params.grid_spec();
+    let setup = time(repeats, || {
+        TrochoidSea::new(&params).expect("a valid preset")
+    });
+    let sea = TrochoidSea::new(&params)?;
+    let field = time(repeats, || sea.grid(&spec, 0.0));
+    println!(
+        "  {:<30} {:>10.1} {:>8.2}",
+        "trochoid setup and fit",
+        setup.as_secs_f64() * 1e3,
+        setup.as_secs_f64() / bare.as_secs_f64()
+    );
+    println!(
+        "  {:<30} {:>10.1} {:>8.2}",
+        "trochoid field (thon-2000)",
+        field.as_secs_f64() * 1e3,
+        field.as_secs_f64() / bare.as_secs_f64()
+    );
+    // One core: 64 rows in this thread.
+    let rows = 64.min(n);
+    let per_core = |p: &Params| -> Result<f64> {
+        let sea = TrochoidSea::new(p)?;
+        let frame = sea.frame(0.0, Some((spec.dx_m(), spec.dy_m())));
+        let mut out = vec![0.0f32; n];
+        let mut scratch = RowScratch::default();
+        let t = time(repeats, || {
+            for j in 0..rows {
+                frame.grid_row(&spec, j, &mut out, &mut scratch);
+            }
+        });
+        Ok((rows * n) as f64 / t.as_secs_f64() / 1e6)
+    };
+    let all = per_core(&params)?;
+    let mut waves = params.clone();
+    waves.trochoid.turbulence = false;
+    let waves = per_core(&waves)?;
+    let mut noise = params.clone();
+    noise.trochoid.components = 1;
+    let noise = per_core(&noise)?;
+    println!(
+        "  trochoid samples per second on one core: {all:.1} M (trochoids + turbulence), {waves:.1} M (the {} trochoids alone), {noise:.1} M (turbulence and one trochoid)",
+        params.trochoid.components
+    );
     Ok(())
 }
 

@@ -49,7 +49,7 @@ pub struct FieldArgs {
     /// Set any parameter: a preset key (wind.speed_mps) or a flag name (wind-speed)
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
-    /// hybrid (default), fft, filtered-noise, perlin
+    /// hybrid (default), fft, filtered-noise, perlin, trochoid
     #[arg(long)]
     pub method: Option<String>,
     /// Spectrum model: phillips, pierson-moskowitz, jonswap, tma, fractal

@@ -17,3 +17,4 @@ pub mod render;
 pub mod rng;
 pub mod spectrum;
 pub mod spectrum_cmd;
+pub mod stream;

@@ -18,6 +18,10 @@ pub enum Stream {
     SpectrumAmplitude = 1,
     /// Gradient hashes of Perlin noise.
     Perlin = 2,
+    /// Phases of the trochoid components.
+    TrochoidPhase = 3,
+    /// Gradient hashes of the trochoid method's turbulence.
+    Turbulence = 4,
 }
 
 /// The multipliers of [`mix64`].

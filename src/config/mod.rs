@@ -4,6 +4,7 @@
 
 pub mod layers;
 pub mod presets;
+pub mod trochoid;
 pub mod validate;
 pub mod values;
 
@@ -11,6 +12,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+pub use trochoid::TrochoidParams;
 pub use validate::{MAX_SAMPLES, MAX_SIDE};
 pub use values::{Beta, Extent2, Range2, Size2};
 
@@ -26,6 +28,9 @@ pub enum Method {
     Perlin,
     /// Mastin et al.: white noise filtered by the spectrum in the Fourier domain.
     FilteredNoise,
+    /// Thon et al.: trochoids from the strongest spectral components plus fitted turbulence;
+    /// continuous, evaluated anywhere (no FFT grid).
+    Trochoid,
 }
 
 impl Method {
@@ -35,6 +40,7 @@ impl Method {
             Method::Fft => "fft",
             Method::Perlin => "perlin",
             Method::FilteredNoise => "filtered-noise",
+            Method::Trochoid => "trochoid",
         }
     }
 }
@@ -96,6 +102,7 @@ pub struct Params {
     pub blend: BlendParams,
     pub motion: MotionParams,
     pub output: OutputParams,
+    pub trochoid: TrochoidParams,
 }
 
 /// How filtered-noise fields move (Mastin et al., "Ocean scene animation").
@@ -313,6 +320,7 @@ impl Params {
         match self.method {
             Method::Fft | Method::FilteredNoise => true,
             Method::Perlin => self.perlin.tileable,
+            Method::Trochoid => false,
             Method::Hybrid => {
                 self.perlin.tileable && matches!(self.blend.alpha, AlphaConfig::Constant { .. })
             }
@@ -339,6 +347,7 @@ impl Default for Params {
             blend: BlendParams::default(),
             motion: MotionParams::default(),
             output: OutputParams::default(),
+            trochoid: TrochoidParams::default(),
         }
     }
 }

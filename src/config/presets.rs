@@ -32,6 +32,9 @@ pub const BUILTIN: &[(&str, &str)] = builtin_presets![
     "storm",
     "storm-loop",
     "swell",
+    "thon-2000",
+    "thon-2000-calm",
+    "thon-2000-storm",
 ];
 
 /// The preset used when none is named.

@@ -1,7 +1,7 @@
 //! Validation of [`Params`]: every value checked once, where parameters are resolved; a
 //! valid `Params` can always be synthesized.
 
-use super::{AlphaConfig, Beta, Params, Range2, SpectrumModel};
+use super::{AlphaConfig, Beta, Method, Params, Range2, SpectrumModel};
 use crate::error::ParamError;
 
 /// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
@@ -44,19 +44,27 @@ impl Params {
     /// Checks every value once; a valid `Params` can always be synthesized.
     pub fn validate(&self) -> Result<(), ParamError> {
         let [nx, ny] = self.grid.size.0;
+        // A trochoid field is evaluated strip by strip: it may be far larger than memory.
+        let (max_side, max_samples) = match self.method {
+            Method::Trochoid => (
+                super::trochoid::MAX_STREAM_SIDE,
+                super::trochoid::MAX_STREAM_SAMPLES,
+            ),
+            _ => (MAX_SIDE, MAX_SAMPLES as u64),
+        };
         for (axis, n) in [("x", nx), ("y", ny)] {
-            if !(2..=MAX_SIDE).contains(&n) {
+            if !(2..=max_side).contains(&n) {
                 return Err(err(
                     &format!("--size (grid.size, {axis})"),
-                    &format!("between 2 and {MAX_SIDE} samples"),
+                    &format!("between 2 and {max_side} samples"),
                     n,
                 ));
             }
         }
-        if nx * ny > MAX_SAMPLES {
+        if nx as u64 * ny as u64 > max_samples {
             return Err(err(
                 "--size (grid.size)",
-                &format!("at most {MAX_SAMPLES} samples in all"),
+                &format!("at most {max_samples} samples in all"),
                 format!("{nx}x{ny}"),
             ));
         }
@@ -141,6 +149,14 @@ impl Params {
                     format!("{lo}:{hi}"),
                 ));
             }
+        }
+        self.trochoid.validate()?;
+        if self.method == Method::Trochoid && self.motion.choppiness != 0.0 {
+            return Err(err(
+                "--choppiness (motion.choppiness)",
+                "0 with --method trochoid (its profile is already Gerstner's: trochoid.sharpness)",
+                self.motion.choppiness,
+            ));
         }
         self.validate_sea()
     }

@@ -12,17 +12,29 @@ use crate::grid::Grid;
 
 /// Encodes `grid` as a 16-bit grayscale PNG.
 pub fn write<W: Write>(w: W, grid: &Grid, mapping: &HeightMapping) -> std::io::Result<()> {
-    let (nx, ny) = (grid.spec.nx, grid.spec.ny);
-    let mut bytes = vec![0u8; nx * ny * 2];
-    bytes
-        .par_chunks_mut(nx * 2)
-        .zip(grid.data.par_chunks(nx))
-        .for_each(|(out, row)| {
-            for (o, &h) in out.chunks_exact_mut(2).zip(row) {
-                o.copy_from_slice(&mapping.encode(h).to_be_bytes());
-            }
-        });
-    let mut enc = png::Encoder::new(w, nx as u32, ny as u32);
+    let nx = grid.spec.nx;
+    // Batches of ~4 MiB of heights.
+    let batch = ((4 << 20) / (4 * nx)).max(1);
+    write_rows(w, (nx, grid.spec.ny), mapping, batch, |first, rows| {
+        rows.copy_from_slice(&grid.data[first * nx..first * nx + rows.len()]);
+        Ok(())
+    })
+}
+
+/// The encoder of a 16-bit grayscale height map: fast deflate, the Up filter, and the
+/// mapping in a `Description` text chunk.
+fn encoder<W: Write>(
+    w: W,
+    nx: usize,
+    ny: usize,
+    mapping: &HeightMapping,
+) -> std::io::Result<png::Encoder<'static, W>> {
+    let too_big = || std::io::Error::other("PNG sides are limited to 2^31 − 1 samples");
+    let mut enc = png::Encoder::new(
+        w,
+        u32::try_from(nx).map_err(|_| too_big())?,
+        u32::try_from(ny).map_err(|_| too_big())?,
+    );
     enc.set_color(png::ColorType::Grayscale);
     enc.set_depth(png::BitDepth::Sixteen);
     enc.set_compression(png::Compression::Fast);
@@ -36,10 +48,45 @@ pub fn write<W: Write>(w: W, grid: &Grid, mapping: &HeightMapping) -> std::io::R
         ),
     )
     .map_err(std::io::Error::other)?;
-    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-    writer
-        .write_image_data(&bytes)
+    Ok(enc)
+}
+
+/// Writes the PNG of an `nx` × `ny` field batch by batch, holding one batch in memory:
+/// `fill(first_row, batch)` fills the heights of rows `first_row..` (`batch.len()/nx` of
+/// them, `batch_rows` except at the end). The pixels equal [`write`]'s for the same field.
+pub fn write_rows<W: Write>(
+    w: W,
+    (nx, ny): (usize, usize),
+    mapping: &HeightMapping,
+    batch_rows: usize,
+    mut fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let mut writer = encoder(w, nx, ny, mapping)?
+        .write_header()
         .map_err(std::io::Error::other)?;
+    let mut stream = writer
+        .stream_writer_with_size(1 << 20)
+        .map_err(std::io::Error::other)?;
+    let batch_rows = batch_rows.max(1);
+    let (mut heights, mut bytes) = (Vec::new(), Vec::new());
+    let mut first = 0;
+    while first < ny {
+        let rows = batch_rows.min(ny - first);
+        heights.resize(rows * nx, 0.0f32);
+        fill(first, &mut heights)?;
+        bytes.resize(rows * nx * 2, 0u8);
+        bytes
+            .par_chunks_mut(nx * 2)
+            .zip(heights.par_chunks(nx))
+            .for_each(|(out, row)| {
+                for (o, &h) in out.chunks_exact_mut(2).zip(row) {
+                    o.copy_from_slice(&mapping.encode(h).to_be_bytes());
+                }
+            });
+        stream.write_all(&bytes)?;
+        first += rows;
+    }
+    stream.finish().map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
 }
 

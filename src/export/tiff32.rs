@@ -10,9 +10,11 @@
 
 use std::io::{Seek, Write};
 
+use tiff::encoder::colortype::Gray32Float;
+use tiff::encoder::{TiffEncoder, TiffKind};
 use tiff::tags::Tag;
 
-use crate::grid::Grid;
+use crate::grid::{Grid, GridSpec};
 
 /// Rows per strip: ~256 KiB strips for 4096-wide grids.
 const ROWS_PER_STRIP: u32 = 16;
@@ -51,17 +53,58 @@ fn geo_keys(citation_len: u16) -> [u16; 20] {
 
 /// Encodes `grid` as a single-channel float TIFF.
 pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {
+    let nx = grid.spec.nx;
+    write_strips(w, &grid.spec, ROWS_PER_STRIP as usize, |first, strip| {
+        strip.copy_from_slice(&grid.data[first * nx..first * nx + strip.len()]);
+        Ok(())
+    })
+}
+
+/// Files above this size are written as BigTIFF (64-bit offsets); classic TIFF's offsets
+/// end at 4 GiB, and the tags and strip tables follow the samples.
+pub const BIGTIFF_ABOVE_BYTES: u64 = (4 << 30) - (64 << 20);
+
+/// Writes the float TIFF of a field of `spec` batch by batch, holding one batch in memory:
+/// `fill(first_row, batch)` fills the rows `first_row..` (`batch.len()/nx` of them, a
+/// multiple of the strip height except at the end), which are then written as strips.
+/// BigTIFF when the samples exceed [`BIGTIFF_ABOVE_BYTES`].
+pub fn write_strips<W: Write + Seek>(
+    w: W,
+    spec: &GridSpec,
+    batch_rows: usize,
+    fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let err = |e: tiff::TiffError| std::io::Error::other(e.to_string());
-    let mut enc = tiff::encoder::TiffEncoder::new(w).map_err(err)?;
+    if spec.len() as u64 * 4 > BIGTIFF_ABOVE_BYTES {
+        encode(
+            TiffEncoder::new_big(w).map_err(err)?,
+            spec,
+            batch_rows,
+            fill,
+        )
+    } else {
+        encode(TiffEncoder::new(w).map_err(err)?, spec, batch_rows, fill)
+    }
+}
+
+fn encode<W: Write + Seek, K: TiffKind>(
+    mut enc: TiffEncoder<W, K>,
+    spec: &GridSpec,
+    batch_rows: usize,
+    mut fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let err = |e: tiff::TiffError| std::io::Error::other(e.to_string());
+    let (nx, ny) = (spec.nx, spec.ny);
+    let too_big = || std::io::Error::other("TIFF sides are limited to 2^32 − 1 samples");
     let mut image = enc
-        .new_image::<tiff::encoder::colortype::Gray32Float>(
-            grid.spec.nx as u32,
-            grid.spec.ny as u32,
+        .new_image::<Gray32Float>(
+            u32::try_from(nx).map_err(|_| too_big())?,
+            u32::try_from(ny).map_err(|_| too_big())?,
         )
         .map_err(err)?;
     image.rows_per_strip(ROWS_PER_STRIP).map_err(err)?;
     let dir = image.encoder();
-    let scale = [grid.spec.dx_m(), grid.spec.dy_m(), 0.0];
+    let scale = [spec.dx_m(), spec.dy_m(), 0.0];
     dir.write_tag(Tag::ModelPixelScaleTag, &scale[..])
         .map_err(err)?;
     dir.write_tag(Tag::ModelTiepointTag, &[0.0f64; 6][..])
@@ -74,7 +117,20 @@ pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {
     .map_err(err)?;
     dir.write_tag(Tag::GeoAsciiParamsTag, citation.as_str())
         .map_err(err)?;
-    image.write_data(&grid.data).map_err(err)
+    let strip = ROWS_PER_STRIP as usize;
+    let batch_rows = batch_rows.max(1).div_ceil(strip) * strip;
+    let mut buf = Vec::new();
+    let mut first = 0;
+    while first < ny {
+        let rows = batch_rows.min(ny - first);
+        buf.resize(rows * nx, 0.0);
+        fill(first, &mut buf)?;
+        for s in buf.chunks(strip * nx) {
+            image.write_strip(s).map_err(err)?;
+        }
+        first += rows;
+    }
+    image.finish().map_err(err)
 }
 
 /// Reads a single-channel float TIFF: (width, height, samples row by row).

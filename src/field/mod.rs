@@ -5,7 +5,9 @@ pub mod fft;
 pub mod filtered_noise;
 pub mod hybrid;
 pub mod lines;
+pub mod noise3;
 pub mod perlin;
+pub mod trochoid;
 pub mod weight;
 
 use serde::Serialize;
@@ -40,6 +42,9 @@ pub struct SynthesisInfo {
     /// Perlin lattice spacing per octave actually used, meters (x, y).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub perlin_wavelengths_m: Vec<(f64, f64)>,
+    /// The trochoid method's components and fitted turbulence.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trochoid: Option<trochoid::TrochoidInfo>,
 }
 
 /// A computed field and what was learned computing it.
@@ -180,6 +185,7 @@ pub struct Synthesizer {
     amplitudes: Option<fft::Amplitudes>,
     plan: Option<fft::InverseFft2>,
     extras: dynamics::Extras,
+    trochoid: Option<trochoid::TrochoidSea>,
 }
 
 impl Synthesizer {
@@ -217,7 +223,16 @@ impl Synthesizer {
                 info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
                 Some(perlin::perlin_field(&spec, &pp))
             }
-            Method::Fft | Method::FilteredNoise => None,
+            Method::Fft | Method::FilteredNoise | Method::Trochoid => None,
+        };
+        let trochoid = match params.method {
+            Method::Trochoid => {
+                crate::stream::check_in_memory(params)?;
+                let sea = trochoid::TrochoidSea::new(params)?;
+                info.trochoid = Some(sea.info().clone());
+                Some(sea)
+            }
+            _ => None,
         };
         let mut this = Self {
             params: params.clone(),
@@ -230,6 +245,7 @@ impl Synthesizer {
             amplitudes: None,
             plan: spectral.then(|| fft::InverseFft2::new(spec.nx, spec.ny)),
             extras,
+            trochoid,
         };
         if params.method == Method::FilteredNoise {
             let setup = this.setup(0.0).expect("spectral methods have a model");
@@ -312,6 +328,10 @@ impl Synthesizer {
             Grid::new(spec, data)
         });
         let grid = match (fft, self.noise.as_ref(), self.alpha.as_ref()) {
+            _ if self.trochoid.is_some() => {
+                let sea = self.trochoid.as_ref().expect("checked");
+                sea.grid(&spec, time_s)
+            }
             (Some(mut f), Some(p), Some(alpha)) => {
                 let b = match params.blend.beta {
                     Beta::Paper => info.h0max_m.unwrap_or(0.0),

@@ -1,0 +1,314 @@
+//! Streamed outputs of procedural fields (`--method trochoid`): the field is computed in
+//! batches of rows, each batch in parallel, and written as it comes, so an output may be
+//! far larger than memory (32768² and beyond). Memory stays at one batch of ~8 MiB of
+//! heights (at least 16 rows) and the writers' buffers, whatever the size.
+//!
+//! `generate` streams when the method is `trochoid` and every output is a `.png` or
+//! `.tif`. Each output is one pass over the field (rows are independent, so a pass is
+//! the same bits as the in-memory field). A 16-bit PNG needs its mapping before its first
+//! row: `--height-range` gives it; otherwise a first pass without files finds the field's
+//! min..max (as the in-memory path does), unless a TIFF written first has already seen
+//! them. So a PNG alone costs two passes, or one with `--height-range`.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use rayon::prelude::*;
+
+use crate::config::{MAX_SAMPLES, MAX_SIDE, Method, Params};
+use crate::error::{Error, ParamError};
+use crate::export::maps::MapKind;
+use crate::export::sidecar::{self, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
+use crate::export::{Format, HeightMapping, Staged, png16, tiff32};
+use crate::field::SynthesisInfo;
+use crate::field::trochoid::{Frame, RowScratch, TrochoidSea};
+use crate::grid::{GridSpec, Stats};
+
+/// Heights per batch (at least one TIFF strip of rows).
+const BATCH_BYTES: usize = 8 << 20;
+
+/// True when `generate` streams these outputs: a trochoid field, only PNG and TIFF files.
+pub fn applies(params: &Params, paths: &[PathBuf]) -> bool {
+    params.method == Method::Trochoid
+        && paths.iter().all(|p| {
+            let name = p.to_string_lossy().to_ascii_lowercase();
+            matches!(Format::from_path(p), Ok(Format::Png16 | Format::Tiff32))
+                && matches!(MapKind::from_path(p), Ok(None))
+                && !name.ends_with(".preview.png")
+        })
+}
+
+/// Refuses a field too large to hold in memory (only streamed outputs can be larger).
+pub fn check_in_memory(params: &Params) -> Result<(), ParamError> {
+    let [nx, ny] = params.grid.size.0;
+    if nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_SAMPLES {
+        return Err(ParamError {
+            name: "--size (grid.size)".into(),
+            allowed: format!(
+                "at most {MAX_SIDE} per side and {MAX_SAMPLES} samples in all when the field is held in memory (only .png and .tif outputs of --method trochoid are streamed)"
+            ),
+            got: format!("{nx}x{ny}"),
+        });
+    }
+    Ok(())
+}
+
+/// Rows per batch for rows of `nx` samples: ~[`BATCH_BYTES`], a multiple of 16.
+pub fn batch_rows(nx: usize) -> usize {
+    (BATCH_BYTES / (4 * nx)).max(1).div_ceil(16) * 16
+}
+
+/// Running statistics over rows, combined in row order (Chan et al.'s pairwise update),
+/// so they do not depend on the number of threads.
+#[derive(Debug, Clone, Copy)]
+pub struct Running {
+    n: f64,
+    mean: f64,
+    m2: f64,
+    min: f32,
+    max: f32,
+}
+
+impl Default for Running {
+    fn default() -> Self {
+        Self {
+            n: 0.0,
+            mean: 0.0,
+            m2: 0.0,
+            min: f32::INFINITY,
+            max: f32::NEG_INFINITY,
+        }
+    }
+}
+
+impl Running {
+    /// The statistics of one row.
+    pub fn of_row(row: &[f32]) -> Self {
+        let n = row.len() as f64;
+        let mean = row.iter().map(|&v| v as f64).sum::<f64>() / n;
+        let m2 = row
+            .iter()
+            .map(|&v| (v as f64 - mean) * (v as f64 - mean))
+            .sum();
+        let (min, max) = row
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        Self {
+            n,
+            mean,
+            m2,
+            min,
+            max,
+        }
+    }
+
+    pub fn merge(&mut self, o: &Running) {
+        let n = self.n + o.n;
+        if n == 0.0 {
+            return;
+        }
+        let d = o.mean - self.mean;
+        self.mean += d * o.n / n;
+        self.m2 += o.m2 + d * d * self.n * o.n / n;
+        self.n = n;
+        self.min = self.min.min(o.min);
+        self.max = self.max.max(o.max);
+    }
+
+    pub fn stats(&self) -> Stats {
+        let std = (self.m2 / self.n).sqrt();
+        Stats {
+            min_m: self.min as f64,
+            max_m: self.max as f64,
+            mean_m: self.mean,
+            std_m: std,
+            hs_m: 4.0 * std,
+        }
+    }
+}
+
+/// Fills `batch` with the rows `first..` of the field `spec` and adds their statistics.
+pub fn fill_rows(
+    frame: &Frame,
+    spec: &GridSpec,
+    first: usize,
+    batch: &mut [f32],
+    acc: &mut Running,
+) {
+    let rows: Vec<Running> = batch
+        .par_chunks_mut(spec.nx)
+        .enumerate()
+        .map_init(RowScratch::default, |s, (r, row)| {
+            frame.grid_row(spec, first + r, row, s);
+            Running::of_row(row)
+        })
+        .collect();
+    for r in &rows {
+        acc.merge(r);
+    }
+}
+
+/// `generate` for streamed outputs (see the module docs).
+pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<()> {
+    let spec = params.grid_spec();
+    // Stage every file (and one sidecar per stem) before any work.
+    let mut outputs = Vec::new();
+    for p in paths {
+        outputs.push((Format::from_path(p)?, Staged::create(p)?));
+    }
+    let mut stems: Vec<PathBuf> = Vec::new();
+    for p in paths {
+        let side = sidecar::path_for(p);
+        if paths.contains(&side) {
+            return Err(Error::Output {
+                path: side,
+                message: "would be written twice, as an output and as a sidecar".into(),
+            }
+            .into());
+        }
+        if !stems.contains(&side) {
+            stems.push(side);
+        }
+    }
+    let staged_sides = stems
+        .iter()
+        .map(|s| Staged::create(s))
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let sea = TrochoidSea::new(params)?;
+    let frame = sea.frame(params.time_s, Some((spec.dx_m(), spec.dy_m())));
+    let info = SynthesisInfo {
+        trochoid: Some(sea.info().clone()),
+        ..SynthesisInfo::default()
+    };
+    // TIFFs first: their pass also finds the range a PNG needs.
+    outputs.sort_by_key(|(f, _)| *f != Format::Tiff32);
+    let has_png = outputs.iter().any(|(f, _)| *f == Format::Png16);
+    let needs_range_pass = has_png
+        && params.output.height_range.is_none()
+        && !outputs.iter().any(|(f, _)| *f == Format::Tiff32);
+    let passes = outputs.len() + needs_range_pass as usize;
+    let bar = if quiet || !std::io::stderr().is_terminal() {
+        indicatif::ProgressBar::hidden()
+    } else {
+        let b = indicatif::ProgressBar::new((passes * spec.ny) as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{msg} {bar:40} {pos}/{len} rows, {per_sec}, ETA {eta}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    };
+    let batch = batch_rows(spec.nx);
+    let mut stats: Option<Stats> = None;
+    if needs_range_pass {
+        bar.set_message("range");
+        let mut acc = Running::default();
+        let mut buf = vec![0.0f32; batch * spec.nx];
+        let mut first = 0;
+        while first < spec.ny {
+            let rows = batch.min(spec.ny - first);
+            fill_rows(&frame, &spec, first, &mut buf[..rows * spec.nx], &mut acc);
+            bar.inc(rows as u64);
+            first += rows;
+        }
+        stats = Some(acc.stats());
+    }
+    let mut mapping = None;
+    let mut source = "--height-range";
+    for (format, staged) in outputs {
+        let mut acc = Running::default();
+        let mut fill = |first: usize, rows: &mut [f32]| {
+            fill_rows(&frame, &spec, first, rows, &mut acc);
+            bar.inc((rows.len() / spec.nx) as u64);
+            Ok(())
+        };
+        match format {
+            Format::Tiff32 => {
+                bar.set_message("tif");
+                staged.write_with(|w| tiff32::write_strips(w, &spec, batch, &mut fill))?;
+            }
+            _ => {
+                bar.set_message("png");
+                let m = *mapping.get_or_insert_with(|| match params.output.height_range {
+                    Some(r) => HeightMapping {
+                        min_m: r.0[0],
+                        max_m: r.0[1],
+                    },
+                    None => {
+                        source = "field min..max";
+                        let s = stats.expect("a pass has found the range");
+                        HeightMapping {
+                            min_m: s.min_m,
+                            max_m: s.max_m,
+                        }
+                    }
+                });
+                staged.write_with(|w| {
+                    png16::write_rows(w, (spec.nx, spec.ny), &m, batch, &mut fill)
+                })?;
+            }
+        }
+        stats.get_or_insert(acc.stats());
+    }
+    bar.finish_and_clear();
+    let stats = stats.expect("at least one output");
+    for (side, staged) in stems.iter().zip(staged_sides) {
+        let mut doc = Sidecar::new(params, &info, stats);
+        for p in paths.iter().filter(|p| &sidecar::path_for(p) == side) {
+            let format = Format::from_path(p)?;
+            doc.files.push(FileEntry {
+                file: file_name(p),
+                format,
+            });
+            match format {
+                Format::Tiff32 => doc.geotiff = Some(GeoTiffInfo::new(&spec)),
+                _ => {
+                    let range = mapping.expect("PNG outputs have a mapping");
+                    doc.mapping = Some(MappingInfo {
+                        range,
+                        step_m: range.step_m(),
+                        formula: sidecar::FORMULA,
+                        source,
+                    });
+                }
+            }
+        }
+        staged.write_with(|w| {
+            serde_json::to_writer_pretty(&mut *w, &doc)?;
+            std::io::Write::write_all(w, b"\n")
+        })?;
+    }
+    if !quiet {
+        let [nx, ny] = params.grid.size.0;
+        eprintln!(
+            "trochoid {nx}×{ny} over {}×{} m (streamed): std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
+            params.grid.extent_m.0[0],
+            params.grid.extent_m.0[1],
+            stats.std_m,
+            stats.hs_m,
+            stats.min_m,
+            stats.max_m
+        );
+        for p in paths {
+            eprintln!("wrote {}", p.display());
+        }
+        if let Some(m) = mapping {
+            eprintln!(
+                "16-bit mapping: {:.4} m → 0, {:.4} m → 65535",
+                m.min_m, m.max_m
+            );
+        }
+    }
+    Ok(())
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
