@@ -90,6 +90,16 @@ fn generate(args: GenerateArgs) -> Result<()> {
     } else {
         args.outputs.clone()
     };
+    // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
+    // memory.
+    if crate::stream::applies(&params, &paths) {
+        let formats = paths
+            .iter()
+            .map(|p| Format::from_path(p))
+            .collect::<Result<Vec<_>, _>>()?;
+        options.check(&formats, params.is_periodic())?;
+        return crate::stream::generate(&params, &paths, args.quiet);
+    }
     let written = write_field(&params, &paths, &options, &SidecarExtras::default(), None)?;
     if !args.quiet {
         let [nx, ny] = params.grid.size.0;
@@ -190,11 +200,6 @@ pub fn write_field(
         .map(|p| Format::from_path(p))
         .collect::<Result<Vec<_>, _>>()?;
     options.check(&formats, periodic)?;
-    // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
-    // memory.
-    if staged_maps.is_empty() && crate::stream::applies(&params, &paths) {
-        return crate::stream::generate(&params, &paths, args.quiet);
-    }
     // Stage every file before computing: a bad path fails now, not after the work.
     let mut outputs = Vec::new();
     for (i, p) in paths.iter().enumerate() {
