@@ -118,20 +118,18 @@ fn frame_path(dir: &Path, k: usize, kind: Kind) -> PathBuf {
     dir.join(format!("frame_{k:05}.{}", kind.suffix()))
 }
 
-/// A rough peak-memory estimate of one frame, bytes.
-fn frame_bytes(params: &Params, kinds: &[Kind]) -> u64 {
+/// A peak-memory estimate of `jobs` frames computed at once, bytes: each frame's field,
+/// derived fields and files, plus the random draws kept for the whole sequence (16 bytes
+/// a sample, measured).
+fn frames_bytes(
+    params: &Params,
+    extras: crate::field::dynamics::Extras,
+    kinds: &[Kind],
+    jobs: u64,
+) -> u64 {
     let n = params.grid_spec().len() as u64;
-    let maps = kinds.iter().filter(|k| matches!(k, Kind::Map(_))).count() as u64;
-    // Height, spectrum and transform buffers, plus up to eight derived fields.
-    n * (24 + maps * 20)
-}
-
-/// Available memory from /proc/meminfo (Linux), bytes.
-fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
+    let frame = crate::guard::Footprint::of_field(params, extras).with_outputs(kinds.len() as u64);
+    frame.bytes(n, jobs).saturating_add(16 * n)
 }
 
 pub fn run(args: AnimateArgs) -> Result<()> {
@@ -159,6 +157,31 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             _ => None,
         })
         .collect();
+    let mut extras = maps::extras_for(&map_kinds);
+    extras.slopes |= kinds.contains(&Kind::Preview);
+    let available = crate::guard::available_memory()?;
+    let jobs = args.jobs.unwrap_or_else(|| {
+        let per_frame =
+            frames_bytes(&params, extras, &kinds, 2) - frames_bytes(&params, extras, &kinds, 1);
+        let by_memory = available
+            .map(|m| (m / 2 / per_frame.max(1)).max(1) as usize)
+            .unwrap_or(1);
+        rayon::current_num_threads().min(by_memory).max(1)
+    });
+    let [nx, ny] = params.grid.size.0;
+    // The 16-bit mapping's first pass computes as many frames at once as there are threads.
+    let copies = match kinds.contains(&Kind::Png) && params.output.height_range.is_none() {
+        true => jobs.max(rayon::current_num_threads()),
+        false => jobs,
+    };
+    crate::guard::check_memory(
+        frames_bytes(&params, extras, &kinds, copies as u64),
+        &format!(
+            "{copies} {nx}x{ny} {} frame(s) at once",
+            params.method.name()
+        ),
+        args.field.force,
+    )?;
     std::fs::create_dir_all(&args.dir)
         .map_err(|e| Error::io(&args.dir, e))
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
@@ -181,15 +204,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         }
         .into());
     }
-    let mut extras = maps::extras_for(&map_kinds);
-    extras.slopes |= kinds.contains(&Kind::Preview);
     let synth = Synthesizer::new(&params, extras, true)?;
-    let jobs = args.jobs.unwrap_or_else(|| {
-        let by_memory = available_memory()
-            .map(|m| (m / 2 / frame_bytes(&params, &kinds).max(1)).max(1) as usize)
-            .unwrap_or(1);
-        rayon::current_num_threads().min(by_memory).max(1)
-    });
     let quiet = args.quiet;
     let started = Instant::now();
     // One mapping for the whole sequence: given, kept from the earlier run, or the range
@@ -236,6 +251,13 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             "no 16-bit heights written".to_string(),
         ),
     };
+    if !(mapping.min_m.is_finite() && mapping.max_m.is_finite()) {
+        return Err(Error::NotFinite {
+            what: "the sequence's heights".into(),
+            detail: format!("range {} … {} m", mapping.min_m, mapping.max_m),
+        }
+        .into());
+    }
     let doc = SequenceDoc {
         tool: "seasynth".into(),
         version: env!("CARGO_PKG_VERSION").into(),
@@ -284,6 +306,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             staged.push((kind, Staged::create(&frame_path(&args.dir, k, kind))?));
         }
         let syn: Synthesis = synth.frame(time_of(k));
+        crate::guard::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
         for (kind, st) in staged {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,

@@ -185,6 +185,14 @@ fn generate(args: GenerateArgs) -> Result<()> {
     let exact_slopes = crate::render::command::exact_slopes_apply(&params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
+    let [nx, ny] = params.grid.size.0;
+    crate::guard::check_memory(
+        crate::guard::Footprint::of_field(&params, extras)
+            .with_outputs(staged_maps.len() as u64 + meshes as u64)
+            .bytes(spec.len() as u64, 1),
+        &format!("a {nx}x{ny} {} field", params.method.name()),
+        args.field.force,
+    )?;
     let synthesis = field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
     let mesh_slopes = synthesis
         .surface
@@ -196,6 +204,7 @@ fn generate(args: GenerateArgs) -> Result<()> {
             dhdy: y.clone(),
         });
     let stats = synthesis.grid.stats();
+    crate::guard::check_finite(&stats, "the synthesized field")?;
     let (mapping, source) = match params.output.height_range {
         Some(r) => (
             HeightMapping {
@@ -262,7 +271,6 @@ fn generate(args: GenerateArgs) -> Result<()> {
         docs.push((staged, doc, index));
     }
 
-    let [nx, ny] = params.grid.size.0;
     let about = format!(
         "{} field {nx}x{ny} over {} x {} m, wind {} m/s toward {} deg, seed {}, time {} s\n\
          params {}",

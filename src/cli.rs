@@ -107,6 +107,9 @@ pub struct FieldArgs {
     /// Filtered-noise motion: dispersion (default), translate, hot-air
     #[arg(long, value_name = "MODE")]
     pub phase_mode: Option<String>,
+    /// Run even when the estimated peak memory exceeds the available memory
+    #[arg(long)]
+    pub force: bool,
 }
 
 impl FieldArgs {

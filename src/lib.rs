@@ -11,6 +11,7 @@ pub mod export;
 pub mod fastmath;
 pub mod field;
 pub mod grid;
+pub mod guard;
 pub mod render;
 pub mod rng;
 pub mod spectrum;

@@ -249,6 +249,12 @@ fn parse_reflection(s: &str) -> Result<Reflection, ParamError> {
 fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
     let Some(from) = &args.from else {
         let params = crate::app::resolve_params(&args.field)?;
+        let [nx, ny] = params.grid.size.0;
+        crate::guard::check_memory(
+            super::footprint(&params).bytes(params.grid_spec().len() as u64, 1),
+            &format!("rendering a {nx}x{ny} {} field", params.method.name()),
+            args.field.force,
+        )?;
         let synthesis = crate::field::synthesize(&params)?;
         return Ok((
             synthesis.grid,

@@ -385,10 +385,14 @@ impl DirectionalSpectrum {
             }
         };
         let fpeak = freq.peak_hz();
-        assert!(
-            fpeak > 0.0 && fpeak.is_finite(),
-            "{freq:?}: peak {fpeak} Hz"
-        );
+        if !(fpeak > 0.0 && fpeak.is_finite()) {
+            // Extreme but allowed inputs (a wind of 1e-300 m/s) can put the peak out of range.
+            return Err(ParamError {
+                name: format!("{WIND_SPEED} or --tp (spectrum.tp_s)"),
+                allowed: "a value giving a finite spectral peak frequency".into(),
+                got: format!("wind {u10_mps} m/s: peak {fpeak} Hz"),
+            });
+        }
         let w_peak = TWO_PI * fpeak;
         let ln_w_peak = ln(w_peak);
         let shape = freq.shape().map(|s| {
