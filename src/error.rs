@@ -48,12 +48,12 @@ pub enum Error {
         "{what} is not finite ({detail}): the parameters give heights beyond the 32-bit float range; lower the amplitudes or heights"
     )]
     NotFinite { what: String, detail: String },
-    /// Reading or writing a file failed while working.
-    #[error("{path}: {source}")]
+    /// Reading or writing a file failed while working: the file and the OS error (shown
+    /// once, not again as a cause).
+    #[error("{path}: {error}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
 }
 
@@ -66,7 +66,7 @@ impl Error {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
-            source,
+            error: source,
         }
     }
 }

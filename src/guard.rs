@@ -146,6 +146,32 @@ pub fn human_bytes(b: u64) -> String {
     }
 }
 
+/// Checks the size an image file's header declares before its pixels are allocated:
+/// at least one pixel, at most [`MAX_SAMPLES`](crate::config::MAX_SAMPLES), and
+/// `bytes_per_pixel` for each within the available memory. The message suits
+/// `FILE: message`.
+pub fn check_image_size(width: u64, height: u64, bytes_per_pixel: u64) -> Result<(), String> {
+    let max = crate::config::MAX_SAMPLES as u64;
+    if width == 0 || height == 0 {
+        return Err(format!("the header declares {width}×{height} pixels: no samples"));
+    }
+    let pixels = width.saturating_mul(height);
+    if pixels > max {
+        return Err(format!(
+            "the header declares {width}×{height} pixels: at most {max} are read"
+        ));
+    }
+    let needed = pixels.saturating_mul(bytes_per_pixel.max(1) + 4);
+    match available_memory() {
+        Ok(Some(available)) if needed > available => Err(format!(
+            "the header declares {width}×{height} pixels, which need about {} of memory but {} is available",
+            human_bytes(needed),
+            human_bytes(available)
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Refuses a field that is not finite (the statistics of any NaN or infinite sample are
 /// not finite), before anything is written.
 pub fn check_finite(stats: &Stats, what: &str) -> Result<(), Error> {

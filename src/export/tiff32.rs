@@ -83,6 +83,10 @@ pub fn read(path: &std::path::Path) -> std::io::Result<(usize, usize, Vec<f32>)>
     let file = std::io::BufReader::new(std::fs::File::open(path)?);
     let mut dec = tiff::decoder::Decoder::new(file).map_err(err)?;
     let (w, h) = dec.dimensions().map_err(err)?;
+    // The declared size is checked before anything is allocated; the decoder's own limit
+    // (256 MiB) would refuse fields above 8192², so it is lifted to what was checked.
+    crate::guard::check_image_size(w as u64, h as u64, 4).map_err(std::io::Error::other)?;
+    let mut dec = dec.with_limits(tiff::decoder::Limits::unlimited());
     match dec.read_image().map_err(err)? {
         tiff::decoder::DecodingResult::F32(v) => Ok((w as usize, h as usize, v)),
         _ => Err(std::io::Error::other("expected 32-bit float samples")),
