@@ -16,11 +16,21 @@ fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
     }
 }
 
+/// A number as the user would write it, short: exponent form when very large or small.
+fn num(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-6..1e15).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
 fn positive(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(err(name, &format!("a finite number > 0{unit}"), v))
+        Err(err(name, &format!("a finite number > 0{unit}"), num(v)))
     }
 }
 
@@ -28,7 +38,7 @@ fn non_negative(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
-        Err(err(name, &format!("a finite number ≥ 0{unit}"), v))
+        Err(err(name, &format!("a finite number ≥ 0{unit}"), num(v)))
     }
 }
 
@@ -36,7 +46,7 @@ fn finite(name: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(err(name, "a finite number", v))
+        Err(err(name, "a finite number", num(v)))
     }
 }
 
@@ -77,7 +87,7 @@ fn check_bounded(b: &Bounded) -> Result<(), ParamError> {
     Err(err(
         b.name,
         &format!("a finite number {low} and ≤ {:e}{}", b.max, b.unit),
-        b.value,
+        num(b.value),
     ))
 }
 

@@ -119,6 +119,7 @@ pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
         }
         (SpectrumModel::Phillips | SpectrumModel::Fractal, _) => return Ok(None),
     };
+    crate::spectrum::directional::check_peak(freq.as_ref(), u)?;
     let model = match s.spreading {
         SpreadingName::Cos2 => SpreadingModel::Cos2,
         SpreadingName::Hasselmann => SpreadingModel::Hasselmann,
