@@ -33,7 +33,7 @@ pub fn parse_bytes(s: &str) -> Option<u64> {
         _ => (s, 1.0),
     };
     let v: f64 = num.trim().parse().ok()?;
-    (v.is_finite() && v >= 0.0).then(|| (v * mult) as u64)
+    (v.is_finite() && v >= 0.0).then_some((v * mult) as u64)
 }
 
 /// Memory available to this run, bytes: [`MEMORY_ENV`] if set, else `MemAvailable` from
@@ -153,7 +153,9 @@ pub fn human_bytes(b: u64) -> String {
 pub fn check_image_size(width: u64, height: u64, bytes_per_pixel: u64) -> Result<(), String> {
     let max = crate::config::MAX_SAMPLES as u64;
     if width == 0 || height == 0 {
-        return Err(format!("the header declares {width}×{height} pixels: no samples"));
+        return Err(format!(
+            "the header declares {width}×{height} pixels: no samples"
+        ));
     }
     let pixels = width.saturating_mul(height);
     if pixels > max {

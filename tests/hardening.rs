@@ -519,7 +519,7 @@ fn sigint_during_a_large_run_removes_its_temporary_files_and_keeps_the_earlier_o
 fn sigterm_during_an_animation_leaves_only_complete_frames() {
     let dir = tempfile::tempdir().unwrap();
     let frames = dir.path().join("frames");
-    let mut child = Command::new(bin())
+    let child = Command::new(bin())
         .current_dir(dir.path())
         .args(["animate", "--quiet", "--size", "512", "--frames", "100000"])
         .args([

@@ -571,14 +571,3 @@ mod tests {
         }
     }
 }
-
-/// Peak memory of rendering a synthesized field of `params`: the larger of the synthesis
-/// and the render's own buffers (the field, its slopes, the mean and max pyramids:
-/// 35 bytes a sample measured, 44 counted).
-pub fn footprint(params: &crate::config::Params) -> crate::guard::Footprint {
-    let synthesis = crate::guard::Footprint::of_field(params, Default::default());
-    crate::guard::Footprint {
-        per_sample: synthesis.per_sample.max(44),
-        ..synthesis
-    }
-}
