@@ -245,6 +245,9 @@ pub struct BenchArgs {
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Run even when the estimated peak memory exceeds the available memory
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[cfg(test)]

@@ -352,6 +352,15 @@ fn extreme_values_of_the_other_commands_exit_with_0_or_2() {
             "-o",
             "t.png",
         ],
+        &[
+            "bench",
+            "--sizes",
+            "2,3",
+            "--repeats",
+            "1",
+            "--dir",
+            "bench",
+        ],
     ];
     let dir = tempfile::tempdir().unwrap();
     for args in cases {

@@ -635,6 +635,28 @@ mod tests {
     }
 
     #[test]
+    fn a_staged_file_is_listed_for_cleanup_until_written_or_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let ours = || {
+            live::live_files()
+                .iter()
+                .filter(|f| f.starts_with(dir.path()))
+                .count()
+        };
+        let a = Staged::create(&dir.path().join("a.png")).unwrap();
+        let b = Staged::create(&dir.path().join("b.png")).unwrap();
+        assert_eq!(ours(), 2, "both temporary files are listed");
+        a.write_with(|w| w.write_all(b"a")).unwrap();
+        drop(b);
+        assert_eq!(ours(), 0, "renamed and dropped files leave the list");
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
+    }
+
+    #[test]
     fn an_unwritable_folder_fails_at_once() {
         let e = Staged::create(Path::new("/nonexistent-dir/x.png"))
             .err()
