@@ -49,14 +49,21 @@ fuzz_target!(|data: &[u8]| {
     }
     match seasynth::analyze::load(&path) {
         Ok((grid, sidecar)) => {
-            assert!(grid.data.iter().all(|v| v.is_finite()), "non-finite sample read");
+            assert!(
+                grid.data.iter().all(|v| v.is_finite()),
+                "non-finite sample read"
+            );
             let target = sidecar
                 .as_ref()
                 .and_then(|s| seasynth::analyze::Target::from_sidecar(s, &grid.spec).ok());
             let a = seasynth::analyze::analyze(&grid, target.as_ref());
             let numbers = [a.min_m, a.max_m, a.mean_m, a.std_m, a.hs_m, a.dk_rad_per_m];
             assert!(numbers.iter().all(|v| v.is_finite()), "{a:?}");
-            for v in [a.peak_k_rad_per_m, a.peak_wavelength_m, a.peak_direction_deg] {
+            for v in [
+                a.peak_k_rad_per_m,
+                a.peak_wavelength_m,
+                a.peak_direction_deg,
+            ] {
                 assert!(v.is_none_or(f64::is_finite), "{a:?}");
             }
         }
