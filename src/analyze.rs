@@ -302,16 +302,23 @@ struct KGrid {
     nbins: usize,
 }
 
+/// Radial bins per sample of the longer side, at most (square grids use 0.71).
+const MAX_BINS_PER_SAMPLE: usize = 64;
+
 impl KGrid {
     fn new(spec: &GridSpec) -> Self {
         let tau = 2.0 * std::f64::consts::PI;
         let (nx, ny) = (spec.nx, spec.ny);
         let dkx = tau / spec.extent_x_m;
         let dky = tau / spec.extent_y_m;
-        let dk = tau / spec.extent_x_m.max(spec.extent_y_m);
         let ky: Vec<f64> = (0..ny).map(|m| dky * signed_index(m, ny) as f64).collect();
         let kx_max = dkx * (nx / 2) as f64;
         let ky_max = ky.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+        // Bins of the coarser axis' spacing, but at most MAX_BINS_PER_SAMPLE per sample of
+        // the longer side: a grid of very unequal spacings (1e-6 m by 1e9 m) would
+        // otherwise ask for 1e15 bins.
+        let cap = (MAX_BINS_PER_SAMPLE * nx.max(ny)) as f64;
+        let dk = (tau / spec.extent_x_m.max(spec.extent_y_m)).max(kx_max.hypot(ky_max) / cap);
         let nbins = ((kx_max.hypot(ky_max) / dk).round() as usize) + 2;
         Self {
             nx,
@@ -338,8 +345,14 @@ impl KGrid {
         }
     }
 
+    /// Bin 0 holds k = 0 alone (the mean, left out); every other wavevector is in bin 1
+    /// or above, also when the bins are wider than the grid's smallest wavenumber.
     fn bin(&self, kx: f64, ky: f64) -> usize {
-        ((kx.hypot(ky) / self.dk).round() as usize).min(self.nbins - 1)
+        let k = kx.hypot(ky);
+        if k == 0.0 {
+            return 0;
+        }
+        ((k / self.dk).round() as usize).clamp(1, self.nbins - 1)
     }
 }
 
@@ -1224,6 +1237,29 @@ mod tests {
             );
             assert!(serde_json::to_string(&a).is_ok());
         }
+    }
+
+    #[test]
+    fn very_unequal_spacings_get_a_bounded_number_of_bins_and_keep_parseval() {
+        // Found by fuzzing: 1e-6 m by 1e9 m asked for about 1e15 radial bins.
+        let (nx, ny) = (8, 6);
+        let data = (0..nx * ny).map(|v| ((v * 7) % 5) as f32).collect();
+        let g = Grid::new(
+            GridSpec::new(nx, ny, 1e-6 * nx as f64, 1e9 * ny as f64),
+            data,
+        );
+        let a = analyze(&g, None);
+        assert!(
+            a.radial_spectrum.len() <= MAX_BINS_PER_SAMPLE * nx + 2,
+            "{} bins",
+            a.radial_spectrum.len()
+        );
+        let total: f64 = a.radial_spectrum.iter().map(|b| b.power_m2).sum();
+        let var = a.std_m * a.std_m;
+        assert!(
+            (total - var).abs() <= PARSEVAL_REL_TOL * var,
+            "{total} vs {var}"
+        );
     }
 
     #[test]

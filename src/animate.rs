@@ -99,6 +99,20 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             _ => None,
         })
         .collect();
+    let mut extras = maps::extras_for(&map_kinds);
+    extras.slopes |= kinds.contains(&Kind::Preview);
+    // Frames run `jobs` at a time, as many as the memory estimate allows; the draws are
+    // kept for the whole sequence (16 bytes a sample, measured).
+    let n = params.grid_spec().len() as u64;
+    let per_frame =
+        crate::guard::Footprint::of_field(&params, extras).with_outputs(kinds.len() as u64);
+    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 1));
+    let [nx, ny] = params.grid.size.0;
+    crate::guard::check_memory(
+        per_frame.bytes(n, jobs as u64).saturating_add(16 * n),
+        &format!("{jobs} {nx}x{ny} {} frame(s) at once", params.method.name()),
+        args.field.force,
+    )?;
     std::fs::create_dir_all(&args.dir)
         .map_err(|e| Error::io(&args.dir, e))
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
@@ -122,10 +136,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         }
         .into());
     }
-    let mut extras = maps::extras_for(&map_kinds);
-    extras.slopes |= kinds.contains(&Kind::Preview);
     let synth = Synthesizer::new(&params, extras, true)?;
-    let jobs = jobs::parallel_jobs(args.jobs, jobs::field_bytes(&params, map_kinds.len()));
     let quiet = args.quiet;
     let started = Instant::now();
     // One mapping for the whole sequence: given, kept from the earlier run, or the range
@@ -163,6 +174,13 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             "no 16-bit heights written".to_string(),
         ),
     };
+    if !(mapping.min_m.is_finite() && mapping.max_m.is_finite()) {
+        return Err(Error::NotFinite {
+            what: "the sequence's heights".into(),
+            detail: format!("range {} … {} m", mapping.min_m, mapping.max_m),
+        }
+        .into());
+    }
     let doc = SequenceDoc {
         tool: "seasynth".into(),
         version: env!("CARGO_PKG_VERSION").into(),
@@ -200,6 +218,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             staged.push((kind, Staged::create(&frame_path(&args.dir, k, kind))?));
         }
         let syn: Synthesis = synth.frame(time_of(k));
+        crate::guard::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
         for (kind, st) in staged {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,

@@ -100,7 +100,14 @@ fn generate(args: GenerateArgs) -> Result<()> {
         options.check(&formats, params.is_periodic())?;
         return crate::stream::generate(&params, &paths, args.quiet);
     }
-    let written = write_field(&params, &paths, &options, &SidecarExtras::default(), None)?;
+    let written = write_field(
+        &params,
+        &paths,
+        &options,
+        &SidecarExtras::default(),
+        None,
+        args.field.force,
+    )?;
     if !args.quiet {
         let [nx, ny] = params.grid.size.0;
         let stats = written.stats;
@@ -152,13 +159,15 @@ pub struct Written {
 /// extension; maps and previews by their `NAME.KIND.ext` names), with the sidecars. Every
 /// file is staged before the work, so a bad path fails first and nothing partial is left.
 /// `computed`: the field of `params` already synthesized without derived fields
-/// (`Synthesizer::frame` with no extras), used when the outputs need none.
+/// (`Synthesizer::frame` with no extras), used when the outputs need none. `force`: run
+/// even when the memory estimate exceeds the available memory.
 pub fn write_field(
     params: &Params,
     paths: &[PathBuf],
     options: &ExportOptions,
     notes: &SidecarExtras,
     computed: Option<field::Synthesis>,
+    force: bool,
 ) -> Result<Written> {
     let params = params.clone();
     let paths = paths.to_vec();
@@ -258,6 +267,14 @@ pub fn write_field(
     let exact_slopes = crate::render::command::exact_slopes_apply(&params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
+    let [nx, ny] = params.grid.size.0;
+    crate::guard::check_memory(
+        crate::guard::Footprint::of_field(&params, extras)
+            .with_outputs(staged_maps.len() as u64 + meshes as u64)
+            .bytes(spec.len() as u64, 1),
+        &format!("a {nx}x{ny} {} field", params.method.name()),
+        force,
+    )?;
     let synthesis = match computed.filter(|_| !extras.any()) {
         Some(s) => s,
         None => field::Synthesizer::new(&params, extras, false)?.frame(params.time_s),
@@ -272,6 +289,7 @@ pub fn write_field(
             dhdy: y.clone(),
         });
     let stats = synthesis.grid.stats();
+    crate::guard::check_finite(&stats, "the synthesized field")?;
     let (mapping, source) = match params.output.height_range {
         Some(r) => (
             HeightMapping {
@@ -339,7 +357,6 @@ pub fn write_field(
         docs.push((staged, doc, index));
     }
 
-    let [nx, ny] = params.grid.size.0;
     let about = format!(
         "{} field {nx}x{ny} over {} x {} m, wind {} m/s toward {} deg, seed {}, time {} s\n\
          params {}",

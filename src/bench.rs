@@ -12,6 +12,7 @@ use rustfft::num_complex::Complex32;
 
 use crate::cli::BenchArgs;
 use crate::config::Params;
+use crate::error::{Error, ParamError};
 use crate::export::{FieldOut, HeightMapping, Output};
 use crate::field::{self, fft, hybrid, perlin, weight};
 use crate::grid::GridSpec;
@@ -87,8 +88,49 @@ fn amplitude_variances(setup: &fft::SpectrumSetup) -> f64 {
         .sum()
 }
 
+/// The default job at n×n samples, 1 m apart.
+fn bench_params(n: usize) -> Params {
+    Params {
+        grid: crate::config::GridParams {
+            size: crate::config::Size2([n, n]),
+            extent_m: crate::config::Extent2([n as f64, n as f64]),
+        },
+        ..Params::default()
+    }
+}
+
 pub fn run(args: BenchArgs) -> Result<()> {
     crate::app::set_threads(args.threads)?;
+    // Every size is checked (and its memory estimated) before any timing starts.
+    for &n in &args.sizes {
+        let params = bench_params(n);
+        params.validate().map_err(|e| {
+            Error::Param(ParamError {
+                name: "--sizes".into(),
+                got: n.to_string(),
+                ..e
+            })
+        })?;
+        let all = crate::field::dynamics::Extras {
+            slopes: true,
+            displacement: true,
+            jacobian: true,
+        };
+        let choppy = Params {
+            motion: crate::config::MotionParams {
+                choppiness: 1.0,
+                ..Default::default()
+            },
+            ..params
+        };
+        crate::guard::check_memory(
+            crate::guard::Footprint::of_field(&choppy, all)
+                .with_outputs(2)
+                .bytes((n * n) as u64, 1),
+            &format!("benchmarking {n}x{n}"),
+            args.force,
+        )?;
+    }
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
     let repeats = args.repeats.max(1);
@@ -97,13 +139,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         rayon::current_num_threads()
     );
     for &n in &args.sizes {
-        let params = Params {
-            grid: crate::config::GridParams {
-                size: crate::config::Size2([n, n]),
-                extent_m: crate::config::Extent2([n as f64, n as f64]),
-            },
-            ..Params::default()
-        };
+        let params = bench_params(n);
         let spec: GridSpec = params.grid_spec();
         let model = field::phillips(&params);
         let setup = fft::SpectrumSetup {

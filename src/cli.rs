@@ -109,6 +109,9 @@ pub struct FieldArgs {
     /// Filtered-noise motion: dispersion (default), translate, hot-air
     #[arg(long, value_name = "MODE")]
     pub phase_mode: Option<String>,
+    /// Run even when the estimated peak memory exceeds the available memory
+    #[arg(long)]
+    pub force: bool,
 }
 
 impl FieldArgs {
@@ -244,6 +247,9 @@ pub struct BenchArgs {
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Run even when the estimated peak memory exceeds the available memory
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[cfg(test)]

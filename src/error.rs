@@ -32,12 +32,28 @@ pub enum Error {
     /// An input file (weight map, preset) that cannot be read or decoded.
     #[error("{path}: {message}")]
     Input { path: PathBuf, message: String },
-    /// Reading or writing a file failed while working.
-    #[error("{path}: {source}")]
+    /// A run refused before the work: its estimated peak memory exceeds what is available.
+    #[error(
+        "{what} needs about {} of memory but {} is available: use a smaller --size, --method trochoid (streams any size), or --force to run anyway",
+        crate::guard::human_bytes(*needed_bytes),
+        crate::guard::human_bytes(*available_bytes)
+    )]
+    Memory {
+        what: String,
+        needed_bytes: u64,
+        available_bytes: u64,
+    },
+    /// Parameters that are each allowed but together overflow the 32-bit float field.
+    #[error(
+        "{what} is not finite ({detail}): the parameters give heights beyond the 32-bit float range; lower the amplitudes or heights"
+    )]
+    NotFinite { what: String, detail: String },
+    /// Reading or writing a file failed while working: the file and the OS error (shown
+    /// once, not again as a cause).
+    #[error("{path}: {error}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
 }
 
@@ -50,7 +66,7 @@ impl Error {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
-            source,
+            error: source,
         }
     }
 }

@@ -63,27 +63,28 @@ impl FileKind {
     }
 }
 
-/// A rough peak-memory estimate of computing and writing one field of `params` with
-/// `maps` derived maps, bytes.
+/// A peak-memory estimate of computing and writing one field of `params` with `maps`
+/// derived maps, bytes ([`crate::guard::Footprint`], with every derived field when there
+/// is a map).
 pub fn field_bytes(params: &Params, maps: usize) -> u64 {
-    let n = params.grid_spec().len() as u64;
-    // Height, spectrum and transform buffers, plus up to eight derived fields.
-    n * (24 + maps as u64 * 20)
-}
-
-/// Available memory from /proc/meminfo (Linux), bytes.
-pub fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
+    let all = crate::field::dynamics::Extras {
+        slopes: true,
+        displacement: true,
+        jacobian: true,
+    };
+    let extras = if maps > 0 { all } else { Default::default() };
+    crate::guard::Footprint::of_field(params, extras)
+        .with_outputs(maps as u64)
+        .bytes(params.grid_spec().len() as u64, 1)
 }
 
 /// How many fields to compute at once: `requested` (default: the worker threads), at most
 /// as many as fit twice into the available memory by the estimate `per_job_bytes`, and at
 /// least one.
 pub fn parallel_jobs(requested: Option<usize>, per_job_bytes: u64) -> usize {
-    let by_memory = available_memory()
+    let by_memory = crate::guard::available_memory()
+        .ok()
+        .flatten()
         .map(|m| (m / 2 / per_job_bytes.max(1)).max(1) as usize)
         .unwrap_or(1);
     requested
@@ -224,7 +225,7 @@ mod tests {
             "huge jobs: one at a time"
         );
         assert_eq!(parallel_jobs(Some(0), 1), 1, "at least one");
-        if let Some(m) = available_memory() {
+        if let Ok(Some(m)) = crate::guard::available_memory() {
             assert_eq!(
                 parallel_jobs(Some(8), m / 5),
                 2,

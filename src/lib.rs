@@ -12,6 +12,7 @@ pub mod export;
 pub mod fastmath;
 pub mod field;
 pub mod grid;
+pub mod guard;
 pub mod jobs;
 pub mod render;
 pub mod rng;

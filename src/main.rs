@@ -2,6 +2,11 @@ use clap::Parser;
 
 fn main() {
     let cli = seasynth::cli::Cli::parse();
+    // SIGINT/SIGTERM remove every temporary file of every command before exiting.
+    if let Err(e) = seasynth::export::live::install() {
+        eprintln!("Error: cannot watch for interruptions: {e}");
+        std::process::exit(1);
+    }
     if let Err(e) = seasynth::app::run(cli) {
         eprintln!("Error: {e:#}");
         let usage = e

@@ -697,45 +697,6 @@ fn the_same_output_given_twice_is_rejected() {
 }
 
 #[test]
-fn every_bad_preset_in_tests_bad_fails_with_its_expected_message_and_writes_nothing() {
-    let cases = bad_presets();
-    assert!(
-        cases.len() >= 3,
-        "tests/bad holds too few presets: {cases:?}"
-    );
-    for (path, fragment) in cases {
-        assert_rejected(&["--preset", path.to_str().unwrap()], &[&fragment]);
-    }
-}
-
-/// The files `tests/bad/*.toml` with the fragment of their first line `# expect: ...`.
-fn bad_presets() -> Vec<(PathBuf, String)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad");
-    let mut cases = Vec::new();
-    for path in files_under(&dir) {
-        if path.extension().and_then(|e| e.to_str()) != Some("toml") {
-            continue;
-        }
-        let text = String::from_utf8(read(&path)).expect("UTF-8 preset");
-        let mut lines = text.lines();
-        let fragment = lines
-            .next()
-            .and_then(|l| l.strip_prefix("# expect:"))
-            .map(str::trim)
-            .filter(|f| !f.is_empty())
-            .unwrap_or_else(|| {
-                panic!(
-                    "{}: first line must be `# expect: FRAGMENT`",
-                    path.display()
-                )
-            })
-            .to_string();
-        cases.push((path, fragment));
-    }
-    cases
-}
-
-#[test]
 fn alpha_image_selects_the_fft_field_where_white_and_beta_times_perlin_where_black() {
     let (nx, ny) = (96usize, 64usize);
     // White (α = 1) on the left half of the rows j ≥ ny/4 and on the right half of the

@@ -401,7 +401,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     .iter()
                     .any(|s| s.contains('.') || s == "obj" || s == "glb");
                 let budget = if plain {
-                    (jobs::available_memory().unwrap_or(0) / 4).min(KEEP_MAX_BYTES)
+                    (crate::guard::available_memory().ok().flatten().unwrap_or(0) / 4)
+                        .min(KEEP_MAX_BYTES)
                 } else {
                     0
                 };
@@ -538,7 +539,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     batch: Some(&records[i]),
                 };
                 let syn = computed.lock().expect("no worker panicked").remove(&i);
-                write_field(p, &paths, &options, &extras, syn).map_err(|e| {
+                write_field(p, &paths, &options, &extras, syn, args.field.force).map_err(|e| {
                     let usage = e.downcast_ref::<Error>().is_some_and(|e| e.is_usage());
                     (format!("{e:#}"), usage)
                 })

@@ -77,8 +77,14 @@ impl Assignment {
     }
 }
 
-/// A value as TOML if it parses as one, else as a string.
+/// A value as TOML if it parses as one, else as a string. TOML's hexadecimal, octal and
+/// binary integers are not read as numbers: `--size 0x64` is the size `0x64` (0 by 64,
+/// refused), not 100.
 pub fn parse_value(raw: &str) -> Value {
+    let digits = raw.trim().trim_start_matches(['+', '-']);
+    if ["0x", "0o", "0b"].iter().any(|p| digits.starts_with(p)) {
+        return Value::String(raw.to_string());
+    }
     toml::from_str::<Table>(&format!("v = {raw}"))
         .ok()
         .and_then(|mut t| t.remove("v"))

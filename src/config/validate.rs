@@ -16,11 +16,21 @@ fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
     }
 }
 
+/// A number as the user would write it, short: exponent form when very large or small.
+fn num(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && a.is_finite() && !(1e-6..1e15).contains(&a) {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
 fn positive(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(err(name, &format!("a finite number > 0{unit}"), v))
+        Err(err(name, &format!("a finite number > 0{unit}"), num(v)))
     }
 }
 
@@ -28,7 +38,7 @@ fn non_negative(name: &str, unit: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
-        Err(err(name, &format!("a finite number ≥ 0{unit}"), v))
+        Err(err(name, &format!("a finite number ≥ 0{unit}"), num(v)))
     }
 }
 
@@ -36,11 +46,100 @@ fn finite(name: &str, v: f64) -> Result<(), ParamError> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(err(name, "a finite number", v))
+        Err(err(name, "a finite number", num(v)))
     }
 }
 
+/// Largest height scale of any parameter, meters (and the Phillips amplitude's bound):
+/// fields are stored as 32-bit floats, and sums of many components of this size stay far
+/// below their range (about 3.4e38).
+pub const MAX_SCALE: f64 = 1e6;
+
+/// The lower end of a [`Bounded`] value.
+#[derive(Clone, Copy)]
+enum Lower {
+    Positive,
+    NonNegative,
+}
+
+/// A number with a lower end and a largest value: one line per parameter in
+/// [`Params::bounded`], checked by one loop.
+struct Bounded {
+    name: &'static str,
+    unit: &'static str,
+    value: f64,
+    lower: Lower,
+    max: f64,
+}
+
+fn check_bounded(b: &Bounded) -> Result<(), ParamError> {
+    let low_ok = match b.lower {
+        Lower::Positive => b.value > 0.0,
+        Lower::NonNegative => b.value >= 0.0,
+    };
+    if b.value.is_finite() && low_ok && b.value <= b.max {
+        return Ok(());
+    }
+    let low = match b.lower {
+        Lower::Positive => "> 0",
+        Lower::NonNegative => "≥ 0",
+    };
+    Err(err(
+        b.name,
+        &format!("a finite number {low} and ≤ {:e}{}", b.max, b.unit),
+        num(b.value),
+    ))
+}
+
 impl Params {
+    /// Values with a largest allowed size (height scales, amplitudes): fields stay finite.
+    /// A new scale parameter is one more line here.
+    fn bounded(&self) -> Vec<Bounded> {
+        use Lower::{NonNegative, Positive};
+        let b = |name, unit, value, lower, max| Bounded {
+            name,
+            unit,
+            value,
+            lower,
+            max,
+        };
+        let s = &self.spectrum;
+        let mut v = vec![
+            b("spectrum.phillips_a", "", s.phillips_a, Positive, MAX_SCALE),
+            b(
+                "perlin.amplitude_m",
+                " m",
+                self.perlin.amplitude_m,
+                NonNegative,
+                MAX_SCALE,
+            ),
+            b(
+                "fractal.relief_m",
+                " m",
+                self.fractal.relief_m,
+                Positive,
+                MAX_SCALE,
+            ),
+            b(
+                "blend.beta_scale",
+                "",
+                self.blend.beta_scale,
+                NonNegative,
+                MAX_SCALE,
+            ),
+        ];
+        if let Beta::Meters(m) = self.blend.beta {
+            v.push(b("blend.beta", " m", m, NonNegative, MAX_SCALE));
+        }
+        if let Some(h) = s.hs_m {
+            v.push(b("--hs (spectrum.hs_m)", " m", h, Positive, 1e3));
+        }
+        if let Some(t) = s.tp_s {
+            v.push(b("--tp (spectrum.tp_s)", " s", t, Positive, 1e4));
+        }
+        v
+    }
+
     /// Checks every value once; a valid `Params` can always be synthesized.
     pub fn validate(&self) -> Result<(), ParamError> {
         let [nx, ny] = self.grid.size.0;
@@ -158,7 +257,8 @@ impl Params {
                 self.motion.choppiness,
             ));
         }
-        self.validate_sea()
+        self.validate_sea()?;
+        self.bounded().iter().try_for_each(check_bounded)
     }
 
     /// The grid these parameters describe.

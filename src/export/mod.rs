@@ -11,6 +11,7 @@
 
 pub mod exr;
 pub mod glb;
+pub mod live;
 pub mod maps;
 pub mod mesh;
 pub mod obj;
@@ -144,10 +145,13 @@ impl HeightMapping {
     }
 }
 
-/// A file being written: a temporary file beside its target.
+/// A file being written: a temporary file beside its target, registered in [`live`]
+/// from its creation until it is renamed or dropped, so SIGINT/SIGTERM remove it.
 pub struct Staged {
     pub path: PathBuf,
-    tmp: NamedTempFile,
+    /// `None` once renamed over the target.
+    tmp: Option<NamedTempFile>,
+    id: u64,
 }
 
 impl Staged {
@@ -176,31 +180,53 @@ impl Staged {
         // Finished files get ordinary permissions, not the private mode of temporary files.
         #[cfg(unix)]
         builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+        // Created and registered under the lock: a signal cannot fall between the two.
+        let mut live = live::lock();
         let tmp = builder.tempfile_in(dir).map_err(|e| Error::Output {
             path: path.to_path_buf(),
             message: format!("cannot write in {}: {e}", dir.display()),
         })?;
+        let id = live::register(&mut live, tmp.path());
         Ok(Self {
             path: path.to_path_buf(),
-            tmp,
+            tmp: Some(tmp),
+            id,
         })
     }
 
     /// Writes the content through a buffered writer, then renames over the target.
     pub fn write_with(
-        self,
+        mut self,
         f: impl FnOnce(&mut BufWriter<&File>) -> std::io::Result<()>,
     ) -> Result<()> {
         let io = |e| Error::io(&self.path, e);
-        {
-            let mut w = BufWriter::with_capacity(1 << 20, self.tmp.as_file());
-            f(&mut w).map_err(io)?;
-            w.flush().map_err(io)?;
+        let tmp = self.tmp.take().expect("a staged file is written once");
+        let written = (|| {
+            let mut w = BufWriter::with_capacity(1 << 20, tmp.as_file());
+            f(&mut w)?;
+            w.flush()
+        })();
+        if let Err(e) = written {
+            // Removed before the registry forgets it.
+            drop(tmp);
+            return Err(io(e));
         }
-        self.tmp
-            .persist(&self.path)
-            .map_err(|e| Error::io(&self.path, e.error))?;
+        // Renamed under the lock: an interruption leaves the target complete or untouched.
+        let persisted = {
+            let _live = live::lock();
+            tmp.persist(&self.path)
+        };
+        persisted.map_err(|e| Error::io(&self.path, e.error))?;
         Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        let mut live = live::lock();
+        // An unwritten file is removed (NamedTempFile's drop) while the lock is held.
+        drop(self.tmp.take());
+        live.remove(&self.id);
     }
 }
 
@@ -606,6 +632,28 @@ mod tests {
         assert_eq!(std::fs::read(&target).unwrap(), b"earlier");
         let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(left.len(), 1, "temporary file removed");
+    }
+
+    #[test]
+    fn a_staged_file_is_listed_for_cleanup_until_written_or_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let ours = || {
+            live::live_files()
+                .iter()
+                .filter(|f| f.starts_with(dir.path()))
+                .count()
+        };
+        let a = Staged::create(&dir.path().join("a.png")).unwrap();
+        let b = Staged::create(&dir.path().join("b.png")).unwrap();
+        assert_eq!(ours(), 2, "both temporary files are listed");
+        a.write_with(|w| w.write_all(b"a")).unwrap();
+        drop(b);
+        assert_eq!(ours(), 0, "renamed and dropped files leave the list");
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
     }
 
     #[test]

@@ -139,6 +139,16 @@ pub fn read(path: &std::path::Path) -> std::io::Result<(usize, usize, Vec<f32>)>
     let file = std::io::BufReader::new(std::fs::File::open(path)?);
     let mut dec = tiff::decoder::Decoder::new(file).map_err(err)?;
     let (w, h) = dec.dimensions().map_err(err)?;
+    // The declared size is checked before anything is allocated; the decoder's own limit
+    // (256 MiB) would refuse fields above 8192², so it becomes at most four 32-bit floats
+    // per pixel (the RGB displacement maps have three): more channels or wider samples
+    // (found by fuzzing: a header asking for 12.9 GB) are refused by the decoder.
+    crate::guard::check_image_size(w as u64, h as u64, 4).map_err(std::io::Error::other)?;
+    let four_channels = (w as usize).saturating_mul(h as usize).saturating_mul(16);
+    let mut limits = tiff::decoder::Limits::default();
+    limits.decoding_buffer_size = four_channels;
+    limits.intermediate_buffer_size = limits.intermediate_buffer_size.max(four_channels);
+    let mut dec = dec.with_limits(limits);
     match dec.read_image().map_err(err)? {
         tiff::decoder::DecodingResult::F32(v) => Ok((w as usize, h as usize, v)),
         _ => Err(std::io::Error::other("expected 32-bit float samples")),

@@ -124,6 +124,7 @@ pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
         }
         (SpectrumModel::Phillips | SpectrumModel::Fractal, _) => return Ok(None),
     };
+    crate::spectrum::directional::check_peak(freq.as_ref(), u)?;
     let model = match s.spreading {
         SpreadingName::Cos2 => SpreadingModel::Cos2,
         SpreadingName::Hasselmann => SpreadingModel::Hasselmann,
@@ -167,7 +168,9 @@ fn model_from(params: &Params, sea: Option<SeaModel>) -> Result<(Box<dyn Spectru
 
 /// Computes the field that validated `params` describe.
 pub fn synthesize(params: &Params) -> Result<Synthesis> {
-    Ok(Synthesizer::new(params, dynamics::Extras::default(), false)?.frame(params.time_s))
+    let s = Synthesizer::new(params, dynamics::Extras::default(), false)?.frame(params.time_s);
+    crate::guard::check_finite(&s.grid.stats(), "the synthesized field")?;
+    Ok(s)
 }
 
 /// A prepared synthesis: everything that does not depend on time (the spectrum, the

@@ -339,6 +339,20 @@ fn wavenumber(depth: f64, omega: f64) -> f64 {
     k
 }
 
+/// Extreme but allowed inputs (a wind of 1e-300 m/s) can put a model's peak frequency or
+/// its Hs out of the range of floating point numbers: an error naming the inputs.
+pub fn check_peak(freq: &dyn FrequencySpectrum, u10_mps: f64) -> Result<(), ParamError> {
+    let (fpeak, hs) = (freq.peak_hz(), freq.hs_m());
+    if fpeak > 0.0 && fpeak.is_finite() && hs.is_finite() {
+        return Ok(());
+    }
+    Err(ParamError {
+        name: format!("{WIND_SPEED} or --tp (spectrum.tp_s)"),
+        allowed: "a value giving a finite spectral peak and Hs".into(),
+        got: format!("wind {u10_mps:e} m/s: peak {fpeak:e} Hz, Hs {hs:e} m"),
+    })
+}
+
 impl DirectionalSpectrum {
     /// `wind_dir_rad`: the direction the wind blows toward (0 = +x), finite.
     /// `u10_mps` ≥ 0 (> 0 for Mitsuyasu spreading). A finite-depth `dispersion` needs
@@ -385,10 +399,7 @@ impl DirectionalSpectrum {
             }
         };
         let fpeak = freq.peak_hz();
-        assert!(
-            fpeak > 0.0 && fpeak.is_finite(),
-            "{freq:?}: peak {fpeak} Hz"
-        );
+        check_peak(freq.as_ref(), u10_mps)?;
         let w_peak = TWO_PI * fpeak;
         let ln_w_peak = ln(w_peak);
         let shape = freq.shape().map(|s| {
