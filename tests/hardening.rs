@@ -136,6 +136,11 @@ const EXTREMES: &[(&str, &[&str])] = &[
             "fractal.rolloff_m=1e-9",
             "blend.beta=1e6",
             "blend.beta_scale=1e6",
+            "trochoid.components=4096",
+            "trochoid.sharpness=0.98",
+            "trochoid.octaves=16",
+            "trochoid.multiplier=8",
+            "trochoid.amplitude_m=1e6",
         ],
     ),
 ];
@@ -143,6 +148,7 @@ const EXTREMES: &[(&str, &[&str])] = &[
 /// What each extreme value runs with: the methods, and the spectrum models under `fft`.
 const SETTINGS: &[&[&str]] = &[
     &["--method", "hybrid"],
+    &["--method", "trochoid"],
     &["--method", "fft"],
     &["--method", "filtered-noise"],
     &["--method", "perlin"],

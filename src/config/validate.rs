@@ -137,6 +137,9 @@ impl Params {
         if let Some(t) = s.tp_s {
             v.push(b("--tp (spectrum.tp_s)", " s", t, Positive, 1e4));
         }
+        if let Some(a) = self.trochoid.amplitude_m {
+            v.push(b("trochoid.amplitude_m", " m", a, NonNegative, MAX_SCALE));
+        }
         v
     }
 
