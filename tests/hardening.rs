@@ -765,3 +765,99 @@ fn concurrent_writers_to_one_path_leave_one_complete_file() {
         assert_eq!(parts_in(dir.path()), Vec::<String>::new(), "round {round}");
     }
 }
+
+/// A small tmpfs mounted on a folder for a test's life, so that a full or read-only
+/// file system is real (the permission bits of the test above do not stop root). `None`
+/// where this user may not mount.
+struct Tmpfs(PathBuf);
+
+impl Tmpfs {
+    fn mount(dir: &Path, options: &str) -> Option<Self> {
+        let mounted = Command::new("mount")
+            .args(["-t", "tmpfs", "-o", options, "tmpfs"])
+            .arg(dir)
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success());
+        mounted.then(|| Tmpfs(dir.to_path_buf()))
+    }
+
+    fn remount_read_only(&self) {
+        let status = Command::new("mount")
+            .args(["-o", "remount,ro"])
+            .arg(&self.0)
+            .status()
+            .expect("mount runs");
+        assert!(status.success(), "remount read-only");
+    }
+}
+
+impl Drop for Tmpfs {
+    fn drop(&mut self) {
+        if let Err(e) = Command::new("umount").arg(&self.0).status() {
+            eprintln!("umount {}: {e}", self.0.display());
+        }
+    }
+}
+
+#[test]
+fn a_write_to_a_full_file_system_fails_naming_the_file_and_keeps_the_earlier_one() {
+    let dir = tempfile::tempdir().unwrap();
+    // 128 KiB of space; a 256² float TIFF needs 256 KiB.
+    let Some(_fs) = Tmpfs::mount(dir.path(), "size=128k") else {
+        eprintln!(
+            "note: this user may not mount a tmpfs; skipped (the file-size limit test covers failing writes)"
+        );
+        return;
+    };
+    std::fs::write(dir.path().join("a.tif"), b"earlier").unwrap();
+    let out = run_in(
+        dir.path(),
+        &["generate", "--quiet", "--size", "256", "-o", "a.tif"],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "a failed write exits with 1: {stderr}"
+    );
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("a.tif") && stderr.contains("No space left on device"),
+        "names the file and the OS error: {stderr}"
+    );
+    assert_eq!(read(&dir.path().join("a.tif")), b"earlier");
+    assert_eq!(
+        names_in(dir.path()),
+        vec!["a.tif".to_string()],
+        "nothing else left"
+    );
+}
+
+#[test]
+fn a_read_only_file_system_fails_at_once_and_keeps_the_earlier_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let Some(fs) = Tmpfs::mount(dir.path(), "size=1m") else {
+        eprintln!("note: this user may not mount a tmpfs; skipped");
+        return;
+    };
+    std::fs::write(dir.path().join("a.png"), b"earlier").unwrap();
+    fs.remount_read_only();
+    let out = run_in(
+        dir.path(),
+        &["generate", "--quiet", "--size", "64", "-o", "a.png"],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("a.png") && stderr.contains("Read-only file system"),
+        "names the file and the OS error: {stderr}"
+    );
+    assert_eq!(read(&dir.path().join("a.png")), b"earlier");
+    assert_eq!(
+        names_in(dir.path()),
+        vec!["a.png".to_string()],
+        "nothing else left"
+    );
+}
