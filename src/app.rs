@@ -92,22 +92,23 @@ fn generate(args: GenerateArgs) -> Result<()> {
     };
     // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
     // memory.
-    if crate::stream::applies(&params, &paths) {
+    let written = if crate::stream::applies(&params, &paths) {
         let formats = paths
             .iter()
             .map(|p| Format::from_path(p))
             .collect::<Result<Vec<_>, _>>()?;
         options.check(&formats, params.is_periodic())?;
-        return crate::stream::generate(&params, &paths, args.quiet);
-    }
-    let written = write_field(
-        &params,
-        &paths,
-        &options,
-        &SidecarExtras::default(),
-        None,
-        args.field.force,
-    )?;
+        crate::stream::generate(&params, &paths, args.quiet)?
+    } else {
+        write_field(
+            &params,
+            &paths,
+            &options,
+            &SidecarExtras::default(),
+            None,
+            args.field.force,
+        )?
+    };
     if !args.quiet {
         let [nx, ny] = params.grid.size.0;
         let stats = written.stats;
@@ -210,15 +211,9 @@ pub fn write_field(
         .collect::<Result<Vec<_>, _>>()?;
     options.check(&formats, periodic)?;
     // Stage every file before computing: a bad path fails now, not after the work.
+    // (No path is given twice: checked above, before the maps were staged.)
     let mut outputs = Vec::new();
-    for (i, p) in paths.iter().enumerate() {
-        if paths[..i].contains(p) {
-            return Err(Error::Output {
-                path: p.clone(),
-                message: "given twice".into(),
-            }
-            .into());
-        }
+    for p in &paths {
         outputs.push(Output::plan(p, options, &spec, periodic)?);
     }
     let mut stems: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();

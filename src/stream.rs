@@ -152,7 +152,7 @@ pub fn fill_rows(
 }
 
 /// `generate` for streamed outputs (see the module docs).
-pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<()> {
+pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate::app::Written> {
     let spec = params.grid_spec();
     // Stage every file (and one sidecar per stem) before any work.
     let mut outputs = Vec::new();
@@ -283,28 +283,15 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<()> {
             std::io::Write::write_all(w, b"\n")
         })?;
     }
-    if !quiet {
-        let [nx, ny] = params.grid.size.0;
-        eprintln!(
-            "trochoid {nx}×{ny} over {}×{} m (streamed): std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
-            params.grid.extent_m.0[0],
-            params.grid.extent_m.0[1],
-            stats.std_m,
-            stats.hs_m,
-            stats.min_m,
-            stats.max_m
-        );
-        for p in paths {
-            eprintln!("wrote {}", p.display());
-        }
-        if let Some(m) = mapping {
-            eprintln!(
-                "16-bit mapping: {:.4} m → 0, {:.4} m → 65535",
-                m.min_m, m.max_m
-            );
-        }
-    }
-    Ok(())
+    Ok(crate::app::Written {
+        stats,
+        mapping: mapping.unwrap_or(HeightMapping {
+            min_m: stats.min_m,
+            max_m: stats.max_m,
+        }),
+        has_png: mapping.is_some(),
+        files: paths.to_vec(),
+    })
 }
 
 fn file_name(p: &Path) -> String {

@@ -667,23 +667,21 @@ fn a_write_past_the_file_size_limit_fails_naming_the_file_and_keeps_the_earlier_
         64 << 10,
         &["generate", "--quiet", "--size", "256", "-o", "a.tif"],
     );
+    assert_failed_cleanly(&out, 1, dir.path(), "a.tif", "File too large");
+}
+
+/// A run that failed writing `name` in `dir`: exit `code`, one line naming the file and
+/// `os_error`, the earlier file (`earlier`) intact and nothing else left.
+fn assert_failed_cleanly(out: &Output, code: i32, dir: &Path, name: &str, os_error: &str) {
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(
-        out.status.code(),
-        Some(1),
-        "a failed write exits with 1: {stderr}"
-    );
+    assert_eq!(out.status.code(), Some(code), "{stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
     assert!(
-        stderr.contains("a.tif") && stderr.contains("File too large"),
+        stderr.contains(name) && stderr.contains(os_error),
         "names the file and the OS error: {stderr}"
     );
-    assert_eq!(read(&dir.path().join("a.tif")), b"earlier");
-    assert_eq!(
-        names_in(dir.path()),
-        vec!["a.tif".to_string()],
-        "nothing else left"
-    );
+    assert_eq!(read(&dir.join(name)), b"earlier");
+    assert_eq!(names_in(dir), vec![name.to_string()], "nothing else left");
 }
 
 #[test]
@@ -815,23 +813,7 @@ fn a_write_to_a_full_file_system_fails_naming_the_file_and_keeps_the_earlier_one
         dir.path(),
         &["generate", "--quiet", "--size", "256", "-o", "a.tif"],
     );
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(
-        out.status.code(),
-        Some(1),
-        "a failed write exits with 1: {stderr}"
-    );
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.contains("a.tif") && stderr.contains("No space left on device"),
-        "names the file and the OS error: {stderr}"
-    );
-    assert_eq!(read(&dir.path().join("a.tif")), b"earlier");
-    assert_eq!(
-        names_in(dir.path()),
-        vec!["a.tif".to_string()],
-        "nothing else left"
-    );
+    assert_failed_cleanly(&out, 1, dir.path(), "a.tif", "No space left on device");
 }
 
 #[test]
@@ -847,17 +829,5 @@ fn a_read_only_file_system_fails_at_once_and_keeps_the_earlier_file() {
         dir.path(),
         &["generate", "--quiet", "--size", "64", "-o", "a.png"],
     );
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.contains("a.png") && stderr.contains("Read-only file system"),
-        "names the file and the OS error: {stderr}"
-    );
-    assert_eq!(read(&dir.path().join("a.png")), b"earlier");
-    assert_eq!(
-        names_in(dir.path()),
-        vec!["a.png".to_string()],
-        "nothing else left"
-    );
+    assert_failed_cleanly(&out, 2, dir.path(), "a.png", "Read-only file system");
 }

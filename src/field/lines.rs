@@ -42,10 +42,11 @@ pub fn sin_cos_line(x: &[f64], s: &mut [f64], c: &mut [f64]) {
 /// compiler vectorizes. The body must give the same bits on both (IEEE basic operations
 /// and `fastmath`'s cores only, no fused multiply–add).
 macro_rules! multiversion {
-    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
+    // `fn name(isa: Isa, …)`: the caller chooses the instruction set (tests run both).
+    (@on $(#[$meta:meta])* $vis:vis fn $name:ident($isa:ident : Isa, $($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
         $(#[$meta])*
         #[allow(clippy::too_many_arguments)]
-        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+        $vis fn $name($isa: $crate::field::lines::Isa, $($arg: $ty),*) $(-> $ret)? {
             #[inline(always)]
             #[allow(clippy::too_many_arguments)]
             fn mv_body($($arg: $ty),*) $(-> $ret)? $body
@@ -63,12 +64,22 @@ macro_rules! multiversion {
             unsafe fn mv_avx2($($arg: $ty),*) $(-> $ret)? {
                 mv_body($($arg),*)
             }
-            match $crate::field::lines::Isa::detect() {
+            match $isa {
                 $crate::field::lines::Isa::Plain => mv_plain($($arg),*),
                 // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
                 #[cfg(target_arch = "x86_64")]
                 $crate::field::lines::Isa::Avx2 => unsafe { mv_avx2($($arg),*) },
             }
+        }
+    };
+    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
+        $(#[$meta])*
+        #[allow(clippy::too_many_arguments)]
+        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+            $crate::field::lines::multiversion! {
+                @on fn on(isa: Isa, $($arg: $ty),*) $(-> $ret)? $body
+            }
+            on($crate::field::lines::Isa::detect(), $($arg),*)
         }
     };
 }

@@ -19,7 +19,7 @@
 //! depend on the processor). A single point is a row of one sample: [`noise`] gives the
 //! very bits [`add_row`] gives at that point.
 
-use crate::field::lines::Isa;
+use crate::field::lines::{Isa, multiversion};
 
 /// The 16 gradients (x, y, z components): the 12 cube edges, then (1,1,0), (−1,1,0),
 /// (0,−1,1), (0,−1,−1) again.
@@ -206,35 +206,12 @@ pub fn add_row(
     }
 }
 
-/// Splits each sample's lattice coordinate into the column index relative to `first`
-/// and the fraction.
-fn split_run(
-    isa: Isa,
-    xs: &[f64],
-    scale: f64,
-    offset: f64,
-    first: f64,
-    index: &mut [i32],
-    frac: &mut [f32],
-) {
-    #[inline(always)]
-    fn body(xs: &[f64], scale: f64, offset: f64, first: f64, index: &mut [i32], frac: &mut [f32]) {
-        for ((&x, i), f) in xs.iter().zip(index.iter_mut()).zip(frac.iter_mut()) {
-            let u = x * scale + offset;
-            let fl = floor_f64(u);
-            *i = (fl - first) as i32;
-            *f = (u - fl) as f32;
-        }
-    }
-    match isa {
-        Isa::Plain => body(xs, scale, offset, first, index, frac),
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        Isa::Avx2 => unsafe { split_avx2(xs, scale, offset, first, index, frac) },
-    }
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn split_avx2(
+multiversion! {
+    @on
+    /// Splits each sample's lattice coordinate into the column index relative to `first`
+    /// and the fraction.
+    fn split_run(
+        isa: Isa,
         xs: &[f64],
         scale: f64,
         offset: f64,
@@ -242,36 +219,31 @@ fn split_run(
         index: &mut [i32],
         frac: &mut [f32],
     ) {
-        body(xs, scale, offset, first, index, frac)
+        for ((&x, i), f) in xs.iter().zip(index.iter_mut()).zip(frac.iter_mut()) {
+            let u = x * scale + offset;
+            let fl = floor_f64(u);
+            *i = (fl - first) as i32;
+            *f = (u - fl) as f32;
+        }
     }
 }
 
-/// `out[i] += amp · combine(cols[index[i]], cols[index[i] + 1], frac[i])`.
-fn gather_run(isa: Isa, cols: &[[f32; 2]], index: &[i32], frac: &[f32], amp: f32, out: &mut [f32]) {
-    #[inline(always)]
-    fn body(cols: &[[f32; 2]], index: &[i32], frac: &[f32], amp: f32, out: &mut [f32]) {
-        let last = cols.len() - 2;
-        for ((o, &i), &fx) in out.iter_mut().zip(index).zip(frac) {
-            let i = (i.max(0) as usize).min(last);
-            *o += amp * combine(cols[i], cols[i + 1], fx);
-        }
-    }
-    match isa {
-        Isa::Plain => body(cols, index, frac, amp, out),
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        Isa::Avx2 => unsafe { gather_avx2(cols, index, frac, amp, out) },
-    }
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn gather_avx2(
+multiversion! {
+    @on
+    /// `out[i] += amp · combine(cols[index[i]], cols[index[i] + 1], frac[i])`.
+    fn gather_run(
+        isa: Isa,
         cols: &[[f32; 2]],
         index: &[i32],
         frac: &[f32],
         amp: f32,
         out: &mut [f32],
     ) {
-        body(cols, index, frac, amp, out)
+        let last = cols.len() - 2;
+        for ((o, &i), &fx) in out.iter_mut().zip(index).zip(frac) {
+            let i = (i.max(0) as usize).min(last);
+            *o += amp * combine(cols[i], cols[i + 1], fx);
+        }
     }
 }
 

@@ -34,7 +34,7 @@ use serde::Serialize;
 use crate::config::{Params, SpectrumModel};
 use crate::error::Result;
 use crate::field::fft::SpectrumSetup;
-use crate::field::lines::Isa;
+use crate::field::lines::{Isa, multiversion};
 use crate::field::noise3;
 use crate::grid::{Grid, GridSpec};
 use crate::rng::{self, Stream, sub_seed};
@@ -442,31 +442,11 @@ impl Frame<'_> {
     }
 }
 
-/// `out[i] += amp·v(·)` at table position ax·xs[i] + cy (see [`profile::lookup_pos`]).
-fn wave_run(
-    isa: Isa,
-    table: &profile::Table,
-    xs: &[f64],
-    ax: f64,
-    cy: f64,
-    amp: f32,
-    out: &mut [f32],
-) {
-    #[inline(always)]
-    fn body(table: &profile::Table, xs: &[f64], ax: f64, cy: f64, amp: f32, out: &mut [f32]) {
-        for (o, &x) in out.iter_mut().zip(xs) {
-            *o += amp * profile::lookup_pos(table, ax * x + cy);
-        }
-    }
-    match isa {
-        Isa::Plain => body(table, xs, ax, cy, amp, out),
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        Isa::Avx2 => unsafe { wave_avx2(table, xs, ax, cy, amp, out) },
-    }
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn wave_avx2(
+multiversion! {
+    @on
+    /// `out[i] += amp·v(·)` at table position ax·xs[i] + cy (see [`profile::lookup_pos`]).
+    fn wave_run(
+        isa: Isa,
         table: &profile::Table,
         xs: &[f64],
         ax: f64,
@@ -474,7 +454,9 @@ fn wave_run(
         amp: f32,
         out: &mut [f32],
     ) {
-        body(table, xs, ax, cy, amp, out)
+        for (o, &x) in out.iter_mut().zip(xs) {
+            *o += amp * profile::lookup_pos(table, ax * x + cy);
+        }
     }
 }
 
