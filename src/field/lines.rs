@@ -37,10 +37,11 @@ pub fn sin_cos_line(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     sin_cos_line_on(Isa::detect(), x, s, c);
 }
 
-/// Defines `fn NAME(args) -> R` whose body is compiled twice, for the target's baseline
-/// and (on x86-64) for AVX2, the copy chosen at run time: for whole-line loops that the
-/// compiler vectorizes. The body must give the same bits on both (IEEE basic operations
-/// and `fastmath`'s cores only, no fused multiply–add).
+/// Defines `fn NAME(args) -> R` whose body is compiled for the target's baseline and (on
+/// x86-64) for AVX2 and for AVX-512, the copy chosen at run time: for whole-line loops
+/// that the compiler vectorizes. The body must give the same bits on every copy (IEEE
+/// basic operations and `fastmath`'s cores only, no fused multiply–add; Rust never
+/// contracts a·b + c into one).
 macro_rules! multiversion {
     // `fn name(isa: Isa, …)`: the caller chooses the instruction set (tests run both).
     (@on $(#[$meta:meta])* $vis:vis fn $name:ident($isa:ident : Isa, $($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
@@ -64,11 +65,23 @@ macro_rules! multiversion {
             unsafe fn mv_avx2($($arg: $ty),*) $(-> $ret)? {
                 mv_body($($arg),*)
             }
+            /// # Safety
+            /// The processor must have AVX-512 F, DQ and VL.
+            #[cfg(target_arch = "x86_64")]
+            #[target_feature(enable = "avx2,avx512f,avx512dq,avx512vl")]
+            #[inline(never)]
+            #[allow(clippy::too_many_arguments)]
+            unsafe fn mv_avx512($($arg: $ty),*) $(-> $ret)? {
+                mv_body($($arg),*)
+            }
             match $isa {
                 $crate::field::lines::Isa::Plain => mv_plain($($arg),*),
                 // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
                 #[cfg(target_arch = "x86_64")]
                 $crate::field::lines::Isa::Avx2 => unsafe { mv_avx2($($arg),*) },
+                // SAFETY: Isa::Avx512 is only chosen when the processor has it.
+                #[cfg(target_arch = "x86_64")]
+                $crate::field::lines::Isa::Avx512 => unsafe { mv_avx512($($arg),*) },
             }
         }
     };
@@ -93,6 +106,9 @@ pub(crate) enum Isa {
     /// x86-64 with AVX2.
     #[cfg(target_arch = "x86_64")]
     Avx2,
+    /// x86-64 with AVX-512 F, DQ and VL (and AVX2).
+    #[cfg(target_arch = "x86_64")]
+    Avx512,
 }
 
 impl Isa {
@@ -102,15 +118,23 @@ impl Isa {
         #[cfg(target_arch = "x86_64")]
         {
             use std::sync::atomic::{AtomicU8, Ordering};
-            // 0: not detected yet, 1: Plain, 2: Avx2.
+            // 0: not detected yet, 1: Plain, 2: Avx2, 3: Avx512.
             static DETECTED: AtomicU8 = AtomicU8::new(0);
             match DETECTED.load(Ordering::Relaxed) {
                 1 => Isa::Plain,
                 2 => Isa::Avx2,
+                3 => Isa::Avx512,
                 _ => {
                     let avx2 = std::is_x86_feature_detected!("avx2");
-                    DETECTED.store(if avx2 { 2 } else { 1 }, Ordering::Relaxed);
-                    if avx2 { Isa::Avx2 } else { Isa::Plain }
+                    let (code, isa) = if Self::has_avx512() {
+                        (3, Isa::Avx512)
+                    } else if avx2 {
+                        (2, Isa::Avx2)
+                    } else {
+                        (1, Isa::Plain)
+                    };
+                    DETECTED.store(code, Ordering::Relaxed);
+                    isa
                 }
             }
         }
@@ -122,13 +146,28 @@ impl Isa {
 
     /// Every instruction set this processor can run (for tests and benchmarks).
     #[cfg(test)]
-    fn available() -> Vec<Isa> {
+    pub(crate) fn available() -> Vec<Isa> {
         let mut all = vec![Isa::Plain];
         #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            all.push(Isa::Avx2);
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                all.push(Isa::Avx2);
+            }
+            if Self::has_avx512() {
+                all.push(Isa::Avx512);
+            }
         }
         all
+    }
+
+    /// AVX-512 F, DQ and VL (with AVX2), unless `SEASYNTH_NO_AVX512` is set.
+    #[cfg(target_arch = "x86_64")]
+    fn has_avx512() -> bool {
+        std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("avx512f")
+            && std::is_x86_feature_detected!("avx512dq")
+            && std::is_x86_feature_detected!("avx512vl")
+            && std::env::var_os("SEASYNTH_NO_AVX512").is_none()
     }
 }
 
@@ -145,10 +184,12 @@ fn polar_line_on(
     assert_eq!(r.len(), phi.len(), "polar_line: r and phi differ in length");
     let prefix = rng::polar_prefix(seed, sign.wrapping_mul(n));
     with_words(sign, ny, r.len(), |words| match isa {
-        Isa::Plain => polar_run_plain(prefix, words, r, phi),
+        Isa::Plain => polar_run_fused(isa, prefix, words, r, phi),
         // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
         #[cfg(target_arch = "x86_64")]
         Isa::Avx2 => unsafe { polar_run_avx2(prefix, words, r, phi) },
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx512 => polar_run_fused(isa, prefix, words, r, phi),
     });
 }
 
@@ -202,13 +243,16 @@ fn with_words<R>(sign: i64, ny: usize, len: usize, f: impl FnOnce(&[u64]) -> R) 
     })
 }
 
-/// `(r[j], phi[j]) = gaussian_polar` from the line's hash prefix and words. (One fused
-/// loop: on SSE2, splitting the hash off as the AVX2 version does is slower.)
-#[inline(never)]
-fn polar_run_plain(prefix: u64, words: &[u64], r: &mut [f64], phi: &mut [f64]) {
-    for ((&word, r), phi) in words.iter().zip(r.iter_mut()).zip(phi.iter_mut()) {
-        let (u1, u2) = rng::polar_units_from_word(prefix, word);
-        (*r, *phi) = rng::polar_from_units(u1, u2);
+multiversion! {
+    @on
+    /// `(r[j], phi[j]) = gaussian_polar` from the line's hash prefix and words, in one
+    /// fused loop: on SSE2 splitting the hash off as [`polar_run_avx2`] does is slower,
+    /// and with AVX-512's 64-bit multiplications the compiler vectorizes the hash itself.
+    fn polar_run_fused(isa: Isa, prefix: u64, words: &[u64], r: &mut [f64], phi: &mut [f64]) {
+        for ((&word, r), phi) in words.iter().zip(r.iter_mut()).zip(phi.iter_mut()) {
+            let (u1, u2) = rng::polar_units_from_word(prefix, word);
+            (*r, *phi) = rng::polar_from_units(u1, u2);
+        }
     }
 }
 
@@ -240,42 +284,22 @@ fn sin_cos_line_on(isa: Isa, x: &[f64], s: &mut [f64], c: &mut [f64]) {
         x.len() == s.len() && x.len() == c.len(),
         "sin_cos_line: x, s and c differ in length"
     );
-    let out_of_range = match isa {
-        Isa::Plain => sin_cos_run_plain(x, s, c),
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        #[cfg(target_arch = "x86_64")]
-        Isa::Avx2 => unsafe { sin_cos_run_avx2(x, s, c) },
-    };
-    if out_of_range {
+    if sin_cos_run(isa, x, s, c) {
         sin_cos_fix_up(x, s, c);
     }
 }
 
-/// The Cody–Waite sin_cos of every lane; true if some lane needs the scalar function.
-#[inline(always)]
-fn sin_cos_run_body(x: &[f64], s: &mut [f64], c: &mut [f64]) -> bool {
-    let mut out_of_range = false;
-    for ((&x, s), c) in x.iter().zip(s.iter_mut()).zip(c.iter_mut()) {
-        out_of_range |= fastmath::sin_cos_is_large(x);
-        (*s, *c) = fastmath::sin_cos_cody_waite(x);
+multiversion! {
+    @on
+    /// The Cody–Waite sin_cos of every lane; true if some lane needs the scalar function.
+    fn sin_cos_run(isa: Isa, x: &[f64], s: &mut [f64], c: &mut [f64]) -> bool {
+        let mut out_of_range = false;
+        for ((&x, s), c) in x.iter().zip(s.iter_mut()).zip(c.iter_mut()) {
+            out_of_range |= fastmath::sin_cos_is_large(x);
+            (*s, *c) = fastmath::sin_cos_cody_waite(x);
+        }
+        out_of_range
     }
-    out_of_range
-}
-
-#[inline(never)]
-fn sin_cos_run_plain(x: &[f64], s: &mut [f64], c: &mut [f64]) -> bool {
-    sin_cos_run_body(x, s, c)
-}
-
-/// [`sin_cos_run_plain`] with AVX2.
-///
-/// # Safety
-/// The processor must have AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline(never)]
-unsafe fn sin_cos_run_avx2(x: &[f64], s: &mut [f64], c: &mut [f64]) -> bool {
-    sin_cos_run_body(x, s, c)
 }
 
 /// Redoes the lanes outside the Cody–Waite range with the scalar function.
@@ -720,12 +744,7 @@ mod tests {
 /// scalar function for lanes outside its fast range.
 pub fn exp_line(x: &[f64], e: &mut [f64]) {
     assert_eq!(x.len(), e.len(), "exp_line: x and e differ in length");
-    let special = match Isa::detect() {
-        Isa::Plain => exp_run_plain(x, e),
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        #[cfg(target_arch = "x86_64")]
-        Isa::Avx2 => unsafe { exp_run_avx2(x, e) },
-    };
+    let special = exp_run(x, e);
     if special {
         for (&x, e) in x.iter().zip(e.iter_mut()) {
             if fastmath::exp_is_special(x) {
@@ -735,42 +754,23 @@ pub fn exp_line(x: &[f64], e: &mut [f64]) {
     }
 }
 
-#[inline(always)]
-fn exp_run_body(x: &[f64], e: &mut [f64]) -> bool {
-    let mut special = false;
-    for (&x, e) in x.iter().zip(e.iter_mut()) {
-        special |= fastmath::exp_is_special(x);
-        *e = fastmath::exp_fast(x);
+multiversion! {
+    /// The branch-free pass of [`exp_line`]; true if a lane needs the scalar function.
+    fn exp_run(x: &[f64], e: &mut [f64]) -> bool {
+        let mut special = false;
+        for (&x, e) in x.iter().zip(e.iter_mut()) {
+            special |= fastmath::exp_is_special(x);
+            *e = fastmath::exp_fast(x);
+        }
+        special
     }
-    special
-}
-
-#[inline(never)]
-fn exp_run_plain(x: &[f64], e: &mut [f64]) -> bool {
-    exp_run_body(x, e)
-}
-
-/// [`exp_run_plain`] with AVX2.
-///
-/// # Safety
-/// The processor must have AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline(never)]
-unsafe fn exp_run_avx2(x: &[f64], e: &mut [f64]) -> bool {
-    exp_run_body(x, e)
 }
 
 /// o[i] = fastmath::ln(x[i]) bit for bit: a branch-free pass that vectorizes, then the
 /// scalar function for lanes that are not positive, normal and finite.
 pub fn ln_line(x: &[f64], o: &mut [f64]) {
     assert_eq!(x.len(), o.len(), "ln_line: x and o differ in length");
-    let special = match Isa::detect() {
-        Isa::Plain => ln_run_plain(x, o),
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        #[cfg(target_arch = "x86_64")]
-        Isa::Avx2 => unsafe { ln_run_avx2(x, o) },
-    };
+    let special = ln_run(x, o);
     if special {
         for (&x, o) in x.iter().zip(o.iter_mut()) {
             if fastmath::ln_is_special(x) {
@@ -780,30 +780,16 @@ pub fn ln_line(x: &[f64], o: &mut [f64]) {
     }
 }
 
-#[inline(always)]
-fn ln_run_body(x: &[f64], o: &mut [f64]) -> bool {
-    let mut special = false;
-    for (&x, o) in x.iter().zip(o.iter_mut()) {
-        special |= fastmath::ln_is_special(x);
-        *o = fastmath::ln_positive_normal(x);
+multiversion! {
+    /// The branch-free pass of [`ln_line`]; true if a lane needs the scalar function.
+    fn ln_run(x: &[f64], o: &mut [f64]) -> bool {
+        let mut special = false;
+        for (&x, o) in x.iter().zip(o.iter_mut()) {
+            special |= fastmath::ln_is_special(x);
+            *o = fastmath::ln_positive_normal(x);
+        }
+        special
     }
-    special
-}
-
-#[inline(never)]
-fn ln_run_plain(x: &[f64], o: &mut [f64]) -> bool {
-    ln_run_body(x, o)
-}
-
-/// [`ln_run_plain`] with AVX2.
-///
-/// # Safety
-/// The processor must have AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline(never)]
-unsafe fn ln_run_avx2(x: &[f64], o: &mut [f64]) -> bool {
-    ln_run_body(x, o)
 }
 
 #[cfg(test)]

@@ -252,12 +252,7 @@ mod tests {
     use super::*;
 
     fn isas() -> Vec<Isa> {
-        let mut all = vec![Isa::Plain];
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            all.push(Isa::Avx2);
-        }
-        all
+        Isa::available()
     }
 
     #[test]

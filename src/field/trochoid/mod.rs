@@ -653,11 +653,7 @@ mod tests {
         let sea = TrochoidSea::new(&pm_params(12.0)).unwrap();
         let frame = sea.frame(7.0, None);
         let xs: Vec<f64> = (0..1001).map(|i| -5e4 + i as f64 * 37.3).collect();
-        let mut isas = vec![Isa::Plain];
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            isas.push(Isa::Avx2);
-        }
+        let isas = Isa::available();
         let outs: Vec<Vec<f32>> = isas
             .iter()
             .map(|&isa| {
