@@ -5,15 +5,18 @@
 //! below compute the same operations as [`Kernel::radial`] and [`Kernel::angular`], in the
 //! same order, on arrays: the radial part once per distinct k² (k and −k share it, and
 //! so do ky and −ky of a line in FFT order), then both half-planes' directional parts.
-//! Each pass is compiled for the baseline and for AVX2 (`lines::multiversion`), uses
-//! `fastmath`'s branch-free cores, and flags lanes outside their fast range, which the
-//! scalar functions then redo; so every value equals the scalar one bit for bit.
+//! The directional powers cos^{2s}(θ/2) of both half-planes come last, in single
+//! precision (`Kernel::angular_grid`) in a pass of their own, so that it runs on twice as
+//! many lanes as the double-precision passes around it. Each pass is compiled for the
+//! baseline, AVX2 and AVX-512 (`lines::multiversion`), uses `fastmath`'s branch-free
+//! cores, and flags lanes outside their fast range, which the scalar functions then redo;
+//! so every value equals the scalar one bit for bit.
 
 use super::{
-    C_HIGH, C_LOW, FrequencySpectrum, G, Kernel, PI, POWER_EXPONENT_MIN, Radial, ShapeK,
-    SpreadKind, U_MAX, kitaigorodskii, tanh,
+    C_HIGH, C_LOW, FrequencySpectrum, G, Kernel, PI, Radial, ShapeK, SpreadKind, SpreadTable,
+    U_MAX, half_one_plus_f32, kitaigorodskii, power_f32, tanh,
 };
-use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
+use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal, pow_unit_f32};
 use crate::field::lines::multiversion;
 
 /// Largest γ-exponent argument the fast path takes (the scalar path uses exp(−a) up to
@@ -84,6 +87,7 @@ multiversion! {
         a: &mut [f64],
         e: &mut [f64],
         x: &mut [f64],
+        flags: &mut [u8],
     ) -> bool {
         let deep = depth == f64::INFINITY;
         let peaked = sh.ln_gamma != 0.0;
@@ -125,17 +129,19 @@ multiversion! {
         }
         let n = k2.len();
         let (inv_k, a, e, x) = (&mut inv_k[..n], &mut a[..n], &mut e[..n], &mut x[..n]);
+        let flags = &mut flags[..n];
         if deep && !tma {
-            let mut flags = 0u64;
+            let mut any = 0u8;
             for i in 0..n {
                 let k = k2[i].sqrt();
                 let geo = 0.5 / (G * G * k2[i] * k2[i]);
                 let sp;
                 (inv_k[i], a[i], e[i], x[i], sp) =
                     lane(sh, peaked, plain, k2[i], G * k, geo, k, |_| 1.0);
-                flags |= sp as u64;
+                flags[i] = sp as u8;
+                any |= sp as u8;
             }
-            special |= flags != 0;
+            special |= any != 0;
         } else {
             let phi_of = |q: f64| if tma { kitaigorodskii(q * sh.tma_h) } else { 1.0 };
             for i in 0..n {
@@ -151,6 +157,7 @@ multiversion! {
                 let sp;
                 (inv_k[i], a[i], e[i], x[i], sp) =
                     lane(sh, peaked, plain, k2[i], w2, geo, k, phi_of);
+                flags[i] = sp as u8;
                 special |= sp;
             }
         }
@@ -159,8 +166,9 @@ multiversion! {
 }
 
 multiversion! {
-    /// a ← a·exp(e − ln Z) (·1/π for plain cos²), with the table's [s, ln Z, β] at x.
-    /// True if a lane needs the scalar function.
+    /// a ← a·exp(e − ln Z) (·1/π for plain cos²), with the table's [s, ln Z, β] at x (β
+    /// only for Donelan–Banner, 0 otherwise). Lanes that need the scalar function get a
+    /// flag; true if there is one.
     fn radial_second(
         kern: &Kernel,
         plain: bool,
@@ -170,30 +178,74 @@ multiversion! {
         s: &mut [f64],
         ln_z: &mut [f64],
         beta: &mut [f64],
+        flags: &mut [u8],
     ) -> bool {
         let n = x.len();
         let (e, a, s, ln_z, beta) = (&e[..n], &mut a[..n], &mut s[..n], &mut ln_z[..n], &mut beta[..n]);
+        let flags = &mut flags[..n];
+        let with_beta = kern.kind == SpreadKind::DonelanBanner;
+        let mut any = 0u8;
+        // The table (scalar loads), then the exponentials (vectorized).
         for i in 0..n {
             [s[i], ln_z[i], beta[i]] = if plain {
                 [0.0, 0.0, 0.0]
             } else {
-                kern.table.eval(x[i])
+                let [si, zi, bi] = kern.table.eval_in_range(x[i]);
+                [si, zi, if with_beta { bi } else { 0.0 }]
             };
         }
-        let mut special = false;
         for i in 0..n {
             let arg = e[i] - ln_z[i];
-            special |= exp_is_special(arg);
+            let sp = (!plain & !SpreadTable::in_range(x[i])) | exp_is_special(arg);
             let aa = a[i] * exp_fast(arg);
             a[i] = if plain { aa * (1.0 / PI) } else { aa };
+            flags[i] |= sp as u8;
+            any |= sp as u8;
         }
-        special
+        any != 0
+    }
+}
+
+multiversion! {
+    /// The single-precision arguments of the directional powers of a line: (1 + c)/2 at
+    /// (kx, ky[j]) into `la`, at (−kx, −ky[j]) into `lb`, and s into `s32`.
+    fn power_arguments(
+        wx: f64,
+        wy: f64,
+        kx: f64,
+        ky: &[f64],
+        r: &RadialLine,
+        la: &mut [f32],
+        lb: &mut [f32],
+        s32: &mut [f32],
+    ) {
+        let n = ky.len();
+        let (inv_k, rs) = (&r.inv_k[..n], &r.s[..n]);
+        let (la, lb, s32) = (&mut la[..n], &mut lb[..n], &mut s32[..n]);
+        for j in 0..n {
+            let y = ky[j];
+            la[j] = half_one_plus_f32((kx * wx + y * wy) * inv_k[j]);
+            lb[j] = half_one_plus_f32((-kx * wx + -y * wy) * inv_k[j]);
+            s32[j] = power_f32(rs[j]);
+        }
+    }
+}
+
+multiversion! {
+    /// `d[j] = pow_unit_f32(l[j], s[j])`, 8 or 16 lanes at a time.
+    fn unit_powers(l: &[f32], s: &[f32], d: &mut [f32]) {
+        let n = l.len();
+        let (s, d) = (&s[..n], &mut d[..n]);
+        for j in 0..n {
+            d[j] = pow_unit_f32(l[j], s[j]);
+        }
     }
 }
 
 multiversion! {
     /// ½·Ψ·dkx·dky at (kx, ky[j]) into `pa` and at (−kx, −ky[j]) into `pb`, for the cos^{2s}
-    /// family, plain cos² and cos² with swell. True if a lane needs the scalar function.
+    /// family, plain cos² and cos² with swell, from the powers `da`, `db`: bit for bit
+    /// `0.5 * (angular_grid(..) * dkx * dky)`.
     fn angular_pair(
         wx: f64,
         wy: f64,
@@ -201,58 +253,60 @@ multiversion! {
         kx: f64,
         ky: &[f64],
         r: &RadialLine,
+        da: &[f32],
+        db: &[f32],
         dkx: f64,
         dky: f64,
         pa: &mut [f64],
         pb: &mut [f64],
-    ) -> bool {
+    ) {
         let cos2 = kind != SpreadKind::Family;
         let n = ky.len();
         let (inv_k, ra, rs) = (&r.inv_k[..n], &r.a[..n], &r.s[..n]);
-        let (pa, pb) = (&mut pa[..n], &mut pb[..n]);
-        let mut special = false;
+        let (da, db, pa, pb) = (&da[..n], &db[..n], &mut pa[..n], &mut pb[..n]);
         for j in 0..n {
             let y = ky[j];
             let ca = (kx * wx + y * wy) * inv_k[j];
             let cb = (-kx * wx + -y * wy) * inv_k[j];
             let (a, s) = (ra[j], rs[j]);
             let (ma, mb) = if cos2 { (a * (ca * ca), a * (cb * cb)) } else { (a, a) };
-            let la = (0.5 + 0.5 * ca).max(f64::MIN_POSITIVE);
-            let lb = (0.5 + 0.5 * cb).max(f64::MIN_POSITIVE);
-            let ea = s * ln_positive_normal(la);
-            let eb = s * ln_positive_normal(lb);
-            let xa = exp_fast(ea.max(POWER_EXPONENT_MIN));
-            let xb = exp_fast(eb.max(POWER_EXPONENT_MIN));
-            special |= ln_is_special(la)
-                | ln_is_special(lb)
-                | exp_is_special(ea.max(POWER_EXPONENT_MIN))
-                | exp_is_special(eb.max(POWER_EXPONENT_MIN));
-            let value = |m: f64, x: f64, e: f64| {
+            let value = |m: f64, d: f32| {
                 if a == 0.0 {
                     0.0
                 } else if s == 0.0 {
                     m
-                } else if e < POWER_EXPONENT_MIN {
-                    0.0
                 } else {
-                    m * x
+                    m * f64::from(d)
                 }
             };
             // The bits of `0.5 * (psi * dkx * dky)`: the products in that order.
-            pa[j] = 0.5 * (value(ma, xa, ea) * dkx * dky);
-            pb[j] = 0.5 * (value(mb, xb, eb) * dkx * dky);
+            pa[j] = 0.5 * (value(ma, da[j]) * dkx * dky);
+            pb[j] = 0.5 * (value(mb, db[j]) * dkx * dky);
         }
-        special
     }
+}
+
+/// Scratch of the radial passes: exponents, table arguments, ln Z, and the lanes the
+/// scalar function redoes.
+#[derive(Debug, Default)]
+pub(super) struct RadialScratch {
+    e: Vec<f64>,
+    x: Vec<f64>,
+    ln_z: Vec<f64>,
+    flags: Vec<u8>,
 }
 
 /// Scratch of one thread.
 #[derive(Debug, Default)]
 pub(super) struct LineScratch {
     k2: Vec<f64>,
-    e: Vec<f64>,
-    x: Vec<f64>,
-    ln_z: Vec<f64>,
+    /// The powers' arguments and values (see `power_arguments`).
+    la: Vec<f32>,
+    lb: Vec<f32>,
+    s32: Vec<f32>,
+    da: Vec<f32>,
+    db: Vec<f32>,
+    radial: RadialScratch,
     half: RadialLine,
     full: RadialLine,
 }
@@ -264,11 +318,10 @@ impl Kernel {
         &self,
         k2s: &[f64],
         freq: &dyn FrequencySpectrum,
-        e: &mut Vec<f64>,
-        x: &mut Vec<f64>,
-        ln_z: &mut Vec<f64>,
+        scratch: &mut RadialScratch,
         out: &mut RadialLine,
     ) {
+        let RadialScratch { e, x, ln_z, flags } = scratch;
         let n = k2s.len();
         out.resize(n);
         let Some(sh) = &self.shape else {
@@ -280,7 +333,18 @@ impl Kernel {
         let plain = self.kind == SpreadKind::Cos2Plain;
         e.resize(n, 0.0);
         x.resize(n, 0.0);
-        let first = radial_first(self.depth, sh, plain, k2s, &mut out.inv_k, &mut out.a, e, x);
+        flags.resize(n, 0);
+        let first = radial_first(
+            self.depth,
+            sh,
+            plain,
+            k2s,
+            &mut out.inv_k,
+            &mut out.a,
+            e,
+            x,
+            flags,
+        );
         ln_z.resize(n, 0.0);
         let second = radial_second(
             self,
@@ -291,12 +355,16 @@ impl Kernel {
             &mut out.s,
             ln_z,
             &mut out.beta,
+            flags,
         );
         if first || second {
             // Lanes outside the fast ranges (k² = 0, u beyond the floor, huge γ
-            // arguments): the scalar function for those; it is the reference.
+            // arguments, x outside the spreading table): the scalar function for those;
+            // it is the reference.
             for (i, &k2) in k2s.iter().enumerate() {
-                out.set(i, self.radial(k2, freq));
+                if flags[i] != 0 {
+                    out.set(i, self.radial(k2, freq));
+                }
             }
         }
     }
@@ -318,9 +386,12 @@ impl Kernel {
         let n = ky.len();
         let LineScratch {
             k2,
-            e,
-            x,
-            ln_z,
+            la,
+            lb,
+            s32,
+            da,
+            db,
+            radial: radial_scratch,
             half,
             full,
         } = scratch;
@@ -330,23 +401,29 @@ impl Kernel {
         k2.clear();
         k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
         let radial = if mirrored {
-            self.radial_line(k2, freq, e, x, ln_z, half);
+            self.radial_line(k2, freq, radial_scratch, half);
             half.mirror_into(n, full);
             &*full
         } else {
-            self.radial_line(k2, freq, e, x, ln_z, full);
+            self.radial_line(k2, freq, radial_scratch, full);
             &*full
         };
-        let fast = match self.kind {
-            SpreadKind::DonelanBanner => false,
-            kind => !angular_pair(self.wx, self.wy, kind, kx, ky, radial, dkx, dky, pa, pb),
-        };
-        if !fast {
+        if self.kind == SpreadKind::DonelanBanner {
             for j in 0..n {
                 let r = radial.get(j);
-                pa[j] = 0.5 * (self.angular(&r, kx, ky[j]) * dkx * dky);
-                pb[j] = 0.5 * (self.angular(&r, -kx, -ky[j]) * dkx * dky);
+                pa[j] = 0.5 * (self.angular_grid(&r, kx, ky[j]) * dkx * dky);
+                pb[j] = 0.5 * (self.angular_grid(&r, -kx, -ky[j]) * dkx * dky);
             }
+            return;
         }
+        for v in [&mut *la, &mut *lb, &mut *s32, &mut *da, &mut *db] {
+            v.resize(n, 0.0);
+        }
+        power_arguments(self.wx, self.wy, kx, ky, radial, la, lb, s32);
+        unit_powers(la, s32, da);
+        unit_powers(lb, s32, db);
+        angular_pair(
+            self.wx, self.wy, self.kind, kx, ky, radial, da, db, dkx, dky, pa, pb,
+        );
     }
 }
