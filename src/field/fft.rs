@@ -27,7 +27,7 @@ use rustfft::num_complex::{Complex, Complex32};
 use rustfft::{Fft, FftPlanner};
 
 use crate::fastmath;
-use crate::field::lines::{polar_line, sin_cos_line};
+use crate::field::lines::{multiversion, polar_line, sin_cos_line};
 use crate::grid::{Grid, GridSpec};
 use crate::rng::gaussian_polar;
 use crate::spectrum::{Dispersion, Spectrum};
@@ -273,9 +273,62 @@ fn draw_line(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) {
     let ny = setup.spec.ny;
     polar_line(setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
     polar_line(setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
-    for idx in 0..ny {
-        (buf.ra[idx], buf.pha[idx]) = scale_draw(buf.pa[idx], buf.ra[idx], buf.pha[idx]);
-        (buf.rb[idx], buf.phb[idx]) = scale_draw(buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+    scale_draws(&buf.pa, &mut buf.ra, &mut buf.pha);
+    scale_draws(&buf.pb, &mut buf.rb, &mut buf.phb);
+}
+
+multiversion! {
+    /// `(r[j], phi[j]) = scale_draw(p[j], r[j], phi[j])` for every j.
+    fn scale_draws(p: &[f64], r: &mut [f64], phi: &mut [f64]) {
+        let n = p.len();
+        let (r, phi) = (&mut r[..n], &mut phi[..n]);
+        for j in 0..n {
+            (r[j], phi[j]) = scale_draw(p[j], r[j], phi[j]);
+        }
+    }
+}
+
+/// The index ranges of line n's ky bins that take part in the synthesis (see
+/// [`is_resolved`]): all but m = 0 on the kx = 0 line and the Nyquist row, and none on the
+/// Nyquist line.
+fn resolved_ranges(n: i64, nx: usize, ny: usize) -> [std::ops::Range<usize>; 2] {
+    if nx % 2 == 0 && n.unsigned_abs() as usize == nx / 2 {
+        return [0..0, 0..0];
+    }
+    let start = usize::from(n == 0).min(ny);
+    if ny % 2 == 0 {
+        [start..ny / 2, (ny / 2 + 1).min(ny)..ny]
+    } else {
+        [start..ny, ny..ny]
+    }
+}
+
+multiversion! {
+    /// h̃ = ρa·(ca + i·sa) + ρb·(cb − i·sb) into `out` (as f32), and the peak
+    /// max(ρa², ρb²), for one range of a line.
+    fn combine_run(
+        ra: &[f64],
+        rb: &[f64],
+        sa: &[f64],
+        ca: &[f64],
+        sb: &[f64],
+        cb: &[f64],
+        out: &mut [Complex32],
+    ) -> f64 {
+        const LANES: usize = 8;
+        let n = out.len();
+        let (ra, rb, sa, ca, sb, cb) = (&ra[..n], &rb[..n], &sa[..n], &ca[..n], &sb[..n], &cb[..n]);
+        // Per-lane maxima (a reduction the compiler keeps in vector registers).
+        let mut peaks = [0.0f64; LANES];
+        for j in 0..n {
+            let (a, b) = (ra[j], rb[j]);
+            let re = a * ca[j] + b * cb[j];
+            let im = a * sa[j] - b * sb[j];
+            out[j] = Complex32::new(re as f32, im as f32);
+            let l = j % LANES;
+            peaks[l] = peaks[l].max((a * a).max(b * b));
+        }
+        peaks.iter().fold(0.0f64, |p, &q| p.max(q))
     }
 }
 
@@ -323,26 +376,31 @@ pub(crate) fn combine_line(
         ] {
             v.resize(ny, 0.0);
         }
-        for (idx, &y) in ky.iter().enumerate().take(ny) {
-            let wt = setup.omega_t(kx, y);
-            b.xa[idx] = d.pha[idx] - wt;
-            b.xb[idx] = d.phb[idx] - wt;
-        }
-        sin_cos_line(&b.xa, &mut b.sa, &mut b.ca);
-        sin_cos_line(&b.xb, &mut b.sb, &mut b.cb);
-        let mut peak = 0.0f64;
-        for (idx, out) in line.iter_mut().enumerate() {
-            let m = signed_index(idx, ny);
-            if !is_resolved(n, m, nx, ny) {
-                continue;
+        if setup.time_s == 0.0 {
+            // ω·t = 0 (exactly what omega_t gives): the phases themselves.
+            sin_cos_line(&d.pha[..ny], &mut b.sa, &mut b.ca);
+            sin_cos_line(&d.phb[..ny], &mut b.sb, &mut b.cb);
+        } else {
+            for (idx, &y) in ky.iter().enumerate().take(ny) {
+                let wt = setup.omega_t(kx, y);
+                b.xa[idx] = d.pha[idx] - wt;
+                b.xb[idx] = d.phb[idx] - wt;
             }
-            let (ra, rb) = (d.ra[idx], d.rb[idx]);
-            let h = Complex::new(
-                ra * b.ca[idx] + rb * b.cb[idx],
-                ra * b.sa[idx] - rb * b.sb[idx],
+            sin_cos_line(&b.xa, &mut b.sa, &mut b.ca);
+            sin_cos_line(&b.xb, &mut b.sb, &mut b.cb);
+        }
+        let mut peak = 0.0f64;
+        for r in resolved_ranges(n, nx, ny) {
+            let p = combine_run(
+                &d.ra[r.clone()],
+                &d.rb[r.clone()],
+                &b.sa[r.clone()],
+                &b.ca[r.clone()],
+                &b.sb[r.clone()],
+                &b.cb[r.clone()],
+                &mut line[r],
             );
-            peak = peak.max((ra * ra).max(rb * rb));
-            *out = Complex32::new(h.re as f32, h.im as f32);
+            peak = peak.max(p);
         }
         peak
     })

@@ -4,14 +4,15 @@
 //! The kernels are branch-free loops over arrays, built from the always-inlined cores of
 //! [`crate::rng`] and [`crate::fastmath`] (the range checks and special cases stay in the
 //! scalar functions: a line is checked once, and rare lanes are redone by the scalar
-//! function), so the compiler vectorizes them. They are compiled twice, for the target's
-//! baseline and (on x86-64) for AVX2, chosen at run time; the AVX2 hash is written with
-//! intrinsics, because AVX2 has no 64-bit multiply and the compiler's emulation is slower.
+//! function), so the compiler vectorizes them. They are compiled for the target's
+//! baseline and (on x86-64) for AVX2 and AVX-512, chosen at run time; the AVX2 hash is
+//! written with intrinsics, because AVX2 has no 64-bit multiply and the compiler's
+//! emulation is slower (AVX-512 has one, and the compiler vectorizes the plain loop).
 //!
 //! Why the bits are the same: vector IEEE `+ − × / √` round exactly like their scalar
 //! forms, and the kernels perform the scalar functions' operations in the same order,
-//! without fused multiply–add (Rust never contracts `a * b + c`, and the AVX2 code enables
-//! only AVX2, not FMA); integer operations are exact. The tests compare every path with
+//! without fused multiply–add (Rust never contracts `a * b + c` into one, whatever the
+//! instruction set offers); integer operations are exact. The tests compare every path with
 //! the scalar functions bit for bit.
 
 use super::fft::signed_index;
