@@ -381,10 +381,14 @@ pub(crate) fn combine_line(
             sin_cos_line(&d.pha[..ny], &mut b.sa, &mut b.ca);
             sin_cos_line(&d.phb[..ny], &mut b.sb, &mut b.cb);
         } else {
-            for (idx, &y) in ky.iter().enumerate().take(ny) {
-                let wt = setup.omega_t(kx, y);
-                b.xa[idx] = d.pha[idx] - wt;
-                b.xb[idx] = d.phb[idx] - wt;
+            if setup.dispersion == Dispersion::Deep {
+                deep_phases(setup, kx, &ky[..ny], d, &mut b.xa, &mut b.xb);
+            } else {
+                for (idx, &y) in ky.iter().enumerate().take(ny) {
+                    let wt = setup.omega_t(kx, y);
+                    b.xa[idx] = d.pha[idx] - wt;
+                    b.xb[idx] = d.phb[idx] - wt;
+                }
             }
             sin_cos_line(&b.xa, &mut b.sa, &mut b.ca);
             sin_cos_line(&b.xb, &mut b.sb, &mut b.cb);
@@ -404,6 +408,54 @@ pub(crate) fn combine_line(
         }
         peak
     })
+}
+
+/// φa − ω·t and φb − ω·t of a line in deep water, bit for bit as with
+/// [`SpectrumSetup::omega_t`] (the time reduced by the loop period once, ω rounded to the
+/// loop's multiples per lane).
+fn deep_phases(
+    setup: &SpectrumSetup,
+    kx: f64,
+    ky: &[f64],
+    d: Draws,
+    xa: &mut [f64],
+    xb: &mut [f64],
+) {
+    let t = match setup.loop_period_s {
+        Some(period) => setup.time_s - period * (setup.time_s / period).floor(),
+        None => setup.time_s,
+    };
+    // base = 0 stands for no loop.
+    let base = setup
+        .loop_period_s
+        .map_or(0.0, |p| std::f64::consts::TAU / p);
+    deep_phase_run(kx, ky, t, base, d.pha, d.phb, xa, xb);
+}
+
+multiversion! {
+    /// See [`deep_phases`]: ω = √(g·|k|), [`loop_omega`]'s rounding where `base` > 0.
+    fn deep_phase_run(
+        kx: f64,
+        ky: &[f64],
+        t: f64,
+        base: f64,
+        pha: &[f64],
+        phb: &[f64],
+        xa: &mut [f64],
+        xb: &mut [f64],
+    ) {
+        let n = ky.len();
+        let (pha, phb, xa, xb) = (&pha[..n], &phb[..n], &mut xa[..n], &mut xb[..n]);
+        for j in 0..n {
+            let y = ky[j];
+            let w = (crate::spectrum::G * (kx * kx + y * y).sqrt()).sqrt();
+            let looped = if w == 0.0 { 0.0 } else { (w / base).round().max(1.0) * base };
+            let w = if base > 0.0 { looped } else { w };
+            let wt = w * t;
+            xa[j] = pha[j] - wt;
+            xb[j] = phb[j] - wt;
+        }
+    }
 }
 
 /// The scaled draws of every line of a spectrum, kept so that the frames of an
@@ -666,9 +718,21 @@ mod tests {
     #[test]
     fn the_line_kernels_give_the_reference_amplitudes_bit_for_bit() {
         let ph = Phillips::new(2e-4, 11.0, 2.2, 0.3);
-        for (nx, ny, t) in [(32, 24, 0.0), (33, 17, 12.5), (8, 64, 1e3)] {
+        let cases = [
+            (32, 24, 0.0, None, Dispersion::Deep),
+            (33, 17, 12.5, None, Dispersion::Deep),
+            (8, 64, 1e3, None, Dispersion::Deep),
+            (32, 24, 17.3, Some(9.0), Dispersion::Deep),
+            (16, 15, 4.0, Some(60.0), Dispersion::Finite { depth_m: 3.0 }),
+            (16, 16, 2.5, None, Dispersion::Finite { depth_m: 3.0 }),
+        ];
+        for (nx, ny, t, loop_period_s, dispersion) in cases {
             let spec = GridSpec::new(nx, ny, 70.0, 50.0);
-            let setup = phillips_setup(spec, &ph, 21, t);
+            let setup = SpectrumSetup {
+                loop_period_s,
+                dispersion,
+                ..phillips_setup(spec, &ph, 21, t)
+            };
             let half = synthesize_spectrum(&setup);
             for n in 0..=(nx / 2) {
                 for idx in 0..ny {
