@@ -199,17 +199,21 @@ impl SpreadExact {
 /// [s, ln Z, β] tabulated on x = ln(f/fp) ∈ [X_LO, X_HI] with 256 nodes per unit of x,
 /// one cubic table per piece between breakpoints (interpolation error of the exponent
 /// s·ln cos²(θ/2) − ln Z below ~1e-8 of itself); exact outside. At most 3 breakpoints;
-/// the pieces' nodes share one array.
+/// the pieces' intervals share one array. Each interval holds its cubic (the Lagrange
+/// interpolant of its four surrounding nodes) as power-series coefficients in the
+/// position u ∈ [0, 1) within it: one row of 12 numbers, so an evaluation is one row and
+/// three short Horner schemes.
 #[derive(Debug, Clone)]
 struct SpreadTable {
     exact: SpreadExact,
     /// Breakpoints, padded with +∞.
     edges: [f64; 3],
     segs: [Seg; 4],
-    v: Vec<[f64; 3]>,
+    /// Per interval, per column [s, ln Z, β]: c0 + u·(c1 + u·(c2 + u·c3)).
+    rows: Vec<[[f64; 4]; 3]>,
 }
 
-/// One piece: nodes x0 + (j − 1)/inv_h, j = 0..n+3, at v[offset..].
+/// One piece: intervals [x0 + j/inv_h, x0 + (j + 1)/inv_h), j = 0..n, at rows[offset..].
 #[derive(Debug, Clone, Copy, Default)]
 struct Seg {
     x0: f64,
@@ -223,13 +227,24 @@ const X_LO: f64 = -3.0;
 const X_HI: f64 = 6.0;
 const NODES_PER_UNIT: f64 = 256.0;
 
+/// The power-series coefficients in u of the cubic through (−1, v[0]), (0, v[1]),
+/// (1, v[2]), (2, v[3]).
+fn cubic_row(v: [f64; 4]) -> [f64; 4] {
+    [
+        v[1],
+        -v[0] / 3.0 - v[1] / 2.0 + v[2] - v[3] / 6.0,
+        v[0] / 2.0 - v[1] + v[2] / 2.0,
+        (v[3] - v[0]) / 6.0 + (v[1] - v[2]) / 2.0,
+    ]
+}
+
 impl SpreadTable {
     fn empty(exact: SpreadExact) -> Self {
         Self {
             exact,
             edges: [f64::INFINITY; 3],
             segs: [Seg::default(); 4],
-            v: Vec::new(),
+            rows: Vec::new(),
         }
     }
 
@@ -250,13 +265,19 @@ impl SpreadTable {
                 x0: w[0],
                 inv_h: 1.0 / h,
                 last: (n - 1) as f64,
-                offset: t.v.len(),
+                offset: t.rows.len(),
             };
+            // Nodes x0 + (j − 1)·h, j = 0..n+3: interval j uses nodes j..j+4.
             let nodes: Vec<[f64; 3]> = (0..n + 3)
                 .into_par_iter()
                 .map(|j| exact.cols(w[0] + (j as f64 - 1.0) * h, b))
                 .collect();
-            t.v.extend(nodes);
+            t.rows.extend(
+                nodes
+                    .windows(4)
+                    .take(n)
+                    .map(|v| [0, 1, 2].map(|c| cubic_row([v[0][c], v[1][c], v[2][c], v[3][c]]))),
+            );
         }
         t
     }
@@ -266,7 +287,7 @@ impl SpreadTable {
         if !Self::in_range(x) {
             return self.eval_exact(x);
         }
-        self.eval_in_range(x)
+        self.eval_in_range(x, true)
     }
 
     /// True where [`SpreadTable::eval`] interpolates (false for NaN).
@@ -275,10 +296,10 @@ impl SpreadTable {
         (X_LO..X_HI).contains(&x)
     }
 
-    /// [`SpreadTable::eval`] for `in_range(x)`; branch-free, and meaningless (but within
-    /// the table) elsewhere, so that a loop of it vectorizes.
+    /// [`SpreadTable::eval`] for `in_range(x)` (β only `with_beta`, else 0); free of
+    /// branches on x, and meaningless (but within the table) elsewhere.
     #[inline(always)]
-    fn eval_in_range(&self, x: f64) -> [f64; 3] {
+    fn eval_in_range(&self, x: f64, with_beta: bool) -> [f64; 3] {
         let seg = (x >= self.edges[0]) as usize
             + (x >= self.edges[1]) as usize
             + (x >= self.edges[2]) as usize;
@@ -286,23 +307,14 @@ impl SpreadTable {
         let t = ((x - sg.x0) * sg.inv_h).max(0.0);
         let fi = t.floor().min(sg.last);
         let u = t - fi;
-        // (NaN or out-of-range x: index 0 of the piece.)
-        let i = (sg.offset + fi as usize).min(self.v.len() - 4);
-        // Lagrange weights for the nodes at −1, 0, 1, 2.
-        let um1 = u - 1.0;
-        let um2 = u - 2.0;
-        let up1 = u + 1.0;
-        let uu = u * um1;
-        let w0 = -uu * um2 * (1.0 / 6.0);
-        let w1 = up1 * um1 * um2 * 0.5;
-        let w2 = -up1 * u * um2 * 0.5;
-        let w3 = up1 * uu * (1.0 / 6.0);
-        let v = &self.v[i..i + 4];
-        let mut out = [0.0; 3];
-        for (c, o) in out.iter_mut().enumerate() {
-            *o = (w0 * v[0][c] + w1 * v[1][c]) + (w2 * v[2][c] + w3 * v[3][c]);
-        }
-        out
+        // (NaN or out-of-range x: the piece's first interval.)
+        let row = &self.rows[(sg.offset + fi as usize).min(self.rows.len() - 1)];
+        let horner = |c: &[f64; 4]| c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+        [
+            horner(&row[0]),
+            horner(&row[1]),
+            if with_beta { horner(&row[2]) } else { 0.0 },
+        ]
     }
 
     #[cold]

@@ -130,9 +130,23 @@ multiversion! {
         let n = k2.len();
         let (inv_k, a, e, x) = (&mut inv_k[..n], &mut a[..n], &mut e[..n], &mut x[..n]);
         let flags = &mut flags[..n];
-        if deep && !tma {
+        // Deep water without the depth factor: a loop per value of `peaked`, so that
+        // without a γ peak (Pierson–Moskowitz) its exponential is not computed at all.
+        #[inline(always)]
+        #[allow(clippy::too_many_arguments)]
+        fn deep_run(
+            sh: &ShapeK,
+            peaked: bool,
+            plain: bool,
+            k2: &[f64],
+            inv_k: &mut [f64],
+            a: &mut [f64],
+            e: &mut [f64],
+            x: &mut [f64],
+            flags: &mut [u8],
+        ) -> bool {
             let mut any = 0u8;
-            for i in 0..n {
+            for i in 0..k2.len() {
                 let k = k2[i].sqrt();
                 let geo = 0.5 / (G * G * k2[i] * k2[i]);
                 let sp;
@@ -141,7 +155,14 @@ multiversion! {
                 flags[i] = sp as u8;
                 any |= sp as u8;
             }
-            special |= any != 0;
+            any != 0
+        }
+        if deep && !tma {
+            special |= if peaked {
+                deep_run(sh, true, plain, k2, inv_k, a, e, x, flags)
+            } else {
+                deep_run(sh, false, plain, k2, inv_k, a, e, x, flags)
+            };
         } else {
             let phi_of = |q: f64| if tma { kitaigorodskii(q * sh.tma_h) } else { 1.0 };
             for i in 0..n {
@@ -190,8 +211,7 @@ multiversion! {
             [s[i], ln_z[i], beta[i]] = if plain {
                 [0.0, 0.0, 0.0]
             } else {
-                let [si, zi, bi] = kern.table.eval_in_range(x[i]);
-                [si, zi, if with_beta { bi } else { 0.0 }]
+                kern.table.eval_in_range(x[i], with_beta)
             };
         }
         for i in 0..n {
