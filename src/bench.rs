@@ -159,8 +159,10 @@ pub fn run(args: BenchArgs) -> Result<()> {
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
     let repeats = args.repeats.max(1);
+    // As in `animate`, whose frames these runs repeat.
+    crate::animate::keep_freed_memory();
     println!(
-        "seasynth bench: medians of {repeats} runs, {} threads; ratio = stage time / bare 2D real inverse FFT",
+        "seasynth bench: medians of {repeats} runs, {} threads, freed memory kept for reuse (as animate); ratio = stage time / bare 2D real inverse FFT",
         rayon::current_num_threads()
     );
     for &n in &args.sizes {
