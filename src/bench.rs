@@ -36,6 +36,31 @@ fn time<T>(repeats: usize, mut f: impl FnMut() -> T) -> Duration {
     )
 }
 
+/// CPU time of the whole process (user + system, every thread) so far.
+fn cpu_time() -> Duration {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes the timespec it is given and nothing else.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    assert_eq!(rc, 0, "the process CPU clock exists on Linux");
+    Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32)
+}
+
+/// As [`time`], and the median CPU time of the same runs (every thread's), which a busy
+/// machine disturbs less than the wall time.
+fn time_cpu<T>(repeats: usize, mut f: impl FnMut() -> T) -> (Duration, Duration) {
+    let (wall, cpu): (Vec<Duration>, Vec<Duration>) = (0..repeats)
+        .map(|_| {
+            let (t, c) = (Instant::now(), cpu_time());
+            std::hint::black_box(f());
+            (t.elapsed(), cpu_time().saturating_sub(c))
+        })
+        .unzip();
+    (median(wall), median(cpu))
+}
+
 /// The bare transform: rustfft inverse along y of the nx/2+1 kx lines, then realfft's
 /// complex-to-real inverse along x of every row, on ready buffers and without the
 /// transpose between them — the least work any 2D real inverse FFT does.
@@ -136,8 +161,10 @@ pub fn run(args: BenchArgs) -> Result<()> {
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
     let repeats = args.repeats.max(1);
+    // As in `animate`, whose frames these runs repeat.
+    crate::animate::keep_freed_memory();
     println!(
-        "seasynth bench: medians of {repeats} runs, {} threads; ratio = stage time / bare 2D real inverse FFT",
+        "seasynth bench: medians of {repeats} runs, {} threads, freed memory kept for reuse (as animate); ratio = stage time / bare 2D real inverse FFT",
         rayon::current_num_threads()
     );
     for &n in &args.sizes {
@@ -202,38 +229,42 @@ pub fn run(args: BenchArgs) -> Result<()> {
         let mut fft_params = sea_params.clone();
         fft_params.method = crate::config::Method::Fft;
         let heights = field::Synthesizer::new(&fft_params, Default::default(), true)?;
-        rows.push((
-            "animation frame: height",
-            time(repeats, || heights.frame(1.0)),
-        ));
+        let still = time_cpu(repeats, || heights.frame(1.0));
+        rows.push(("animation frame: height", still.0));
         let all = field::dynamics::Extras {
             slopes: true,
             displacement: true,
             jacobian: true,
         };
         let still_full = field::Synthesizer::new(&fft_params, all, true)?;
-        rows.push((
-            "  + normals, foam, displacement",
-            time(repeats, || {
-                let f = still_full.frame(1.0);
-                (f.surface.normals(), f)
-            }),
-        ));
+        let still_maps = time_cpu(repeats, || {
+            let f = still_full.frame(1.0);
+            (f.surface.normals(), f)
+        });
+        rows.push(("  + normals, foam, displacement", still_maps.0));
         let mut choppy = fft_params.clone();
         choppy.motion.choppiness = 0.8;
         let choppy_heights = field::Synthesizer::new(&choppy, Default::default(), true)?;
-        rows.push((
-            "animation frame: choppy height λ=0.8",
-            time(repeats, || choppy_heights.frame(1.0)),
-        ));
+        let choppy_only = time_cpu(repeats, || choppy_heights.frame(1.0));
+        rows.push(("animation frame: choppy height λ=0.8", choppy_only.0));
         let full = field::Synthesizer::new(&choppy, all, true)?;
-        rows.push((
-            "  + normals, foam, displacement",
-            time(repeats, || {
-                let f = full.frame(1.0);
-                (f.surface.normals(), f)
-            }),
-        ));
+        let choppy_maps = time_cpu(repeats, || {
+            let f = full.frame(1.0);
+            (f.surface.normals(), f)
+        });
+        rows.push(("  + normals, foam, displacement", choppy_maps.0));
+        let ratio = |a: Duration, b: Duration| a.as_secs_f64() / b.as_secs_f64();
+        let maps_cost = format!(
+            "  maps ÷ height frame: still {:.2}× wall, {:.2}× CPU ({:.1} / {:.1} ms CPU); choppy {:.2}× wall, {:.2}× CPU ({:.1} / {:.1} ms CPU)",
+            ratio(still_maps.0, still.0),
+            ratio(still_maps.1, still.1),
+            still_maps.1.as_secs_f64() * 1e3,
+            still.1.as_secs_f64() * 1e3,
+            ratio(choppy_maps.0, choppy_only.0),
+            ratio(choppy_maps.1, choppy_only.1),
+            choppy_maps.1.as_secs_f64() * 1e3,
+            choppy_only.1.as_secs_f64() * 1e3,
+        );
         let plan = fft::InverseFft2::new(n, n);
         let template = fft::synthesize_spectrum(&setup);
         let fft_time = median(
@@ -327,6 +358,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         for (ext, bytes) in sizes {
             println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
         }
+        println!("{maps_cost}");
         trochoid_rows(n, repeats, bare)?;
     }
     if args.exports {

@@ -102,14 +102,22 @@ pub fn write_map(
             super::rgb8::write(staged, &rgb, (spec.nx as u32, spec.ny as u32))
         }
         MapKind::Foam => {
-            let j = surf.jacobian.as_ref().ok_or_else(missing)?;
+            let j = surf
+                .jacobian
+                .as_ref()
+                .ok_or_else(missing)?
+                .values(spec.len());
             let t = cx.params.motion.foam_threshold;
             let v: Vec<u16> = j.iter().map(|&j| foam_value(j, t)).collect();
             staged.write_with(|w| write_gray16(w, &spec, &v))
         }
         MapKind::Jacobian => {
-            let j = surf.jacobian.as_ref().ok_or_else(missing)?;
-            staged.write_with(|w| write_f32(w, &spec, j))
+            let j = surf
+                .jacobian
+                .as_ref()
+                .ok_or_else(missing)?
+                .values(spec.len());
+            staged.write_with(|w| write_f32(w, &spec, &j))
         }
         MapKind::Displacement => {
             let zero;

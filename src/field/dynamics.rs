@@ -30,6 +30,8 @@
 //! moves x0 by less than 1e-4 of a sample. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
 //! (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
+use std::mem::MaybeUninit;
+
 use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 
@@ -58,63 +60,124 @@ pub enum Derivative {
 }
 
 impl Derivative {
-    /// Multiplies one kx line of h̃ by this factor, given the line's kx, the ky of each
-    /// entry and 1/|k| (0 at k = 0, so every factor vanishes there). One branch-free loop
-    /// per factor.
-    fn apply(self, line: &mut [Complex32], kx: f64, ky: &[f64], inv_k: &[f64]) {
-        let (ky, inv_k) = (&ky[..line.len()], &inv_k[..line.len()]);
+    /// Whether the factor divides by |k|.
+    fn needs_inv_k(self) -> bool {
+        !matches!(self, Derivative::SlopeX | Derivative::SlopeY)
+    }
+
+    /// Writes one kx line of h̃ times this factor to `out`, given the line's kx, the ky of
+    /// each entry and 1/|k| (0 at k = 0, so every factor vanishes there; only read by the
+    /// factors that divide by |k|). One branch-free loop per factor.
+    fn apply(
+        self,
+        src: &[Complex32],
+        out: &mut [MaybeUninit<Complex32>],
+        kx: f64,
+        ky: &[f64],
+        inv_k: &[f64],
+    ) {
+        let n = src.len();
+        let out = &mut out[..n];
         // h̃·f for a real f(k), and h̃·i f.
-        fn real(line: &mut [Complex32], f: impl Fn(usize) -> f64) {
-            for (j, v) in line.iter_mut().enumerate() {
+        fn real(src: &[Complex32], out: &mut [MaybeUninit<Complex32>], f: impl Fn(usize) -> f64) {
+            for (j, (o, v)) in out.iter_mut().zip(src).enumerate() {
                 let f = f(j) as f32;
-                *v = Complex32::new(v.re * f, v.im * f);
+                o.write(Complex32::new(v.re * f, v.im * f));
             }
         }
-        fn imag(line: &mut [Complex32], f: impl Fn(usize) -> f64) {
-            for (j, v) in line.iter_mut().enumerate() {
+        fn imag(src: &[Complex32], out: &mut [MaybeUninit<Complex32>], f: impl Fn(usize) -> f64) {
+            for (j, (o, v)) in out.iter_mut().zip(src).enumerate() {
                 let f = f(j) as f32;
-                *v = Complex32::new(-v.im * f, v.re * f);
+                o.write(Complex32::new(-v.im * f, v.re * f));
             }
         }
         match self {
-            Derivative::SlopeX => imag(line, |_| kx),
-            Derivative::SlopeY => imag(line, |j| ky[j]),
-            Derivative::DispX => imag(line, |j| kx * inv_k[j]),
-            Derivative::DispY => imag(line, |j| ky[j] * inv_k[j]),
-            Derivative::DxX => real(line, |j| -kx * kx * inv_k[j]),
-            Derivative::DyY => real(line, |j| -ky[j] * ky[j] * inv_k[j]),
-            Derivative::DxY => real(line, |j| -kx * ky[j] * inv_k[j]),
+            Derivative::SlopeX => imag(src, out, |_| kx),
+            Derivative::SlopeY => {
+                let ky = &ky[..n];
+                imag(src, out, |j| ky[j])
+            }
+            Derivative::DispX => {
+                let inv_k = &inv_k[..n];
+                imag(src, out, |j| kx * inv_k[j])
+            }
+            Derivative::DispY => {
+                let (ky, inv_k) = (&ky[..n], &inv_k[..n]);
+                imag(src, out, |j| ky[j] * inv_k[j])
+            }
+            Derivative::DxX => {
+                let inv_k = &inv_k[..n];
+                real(src, out, |j| -kx * kx * inv_k[j])
+            }
+            Derivative::DyY => {
+                let (ky, inv_k) = (&ky[..n], &inv_k[..n]);
+                real(src, out, |j| -ky[j] * ky[j] * inv_k[j])
+            }
+            Derivative::DxY => {
+                let (ky, inv_k) = (&ky[..n], &inv_k[..n]);
+                real(src, out, |j| -kx * ky[j] * inv_k[j])
+            }
         }
     }
 }
 
 /// h̃(k) times the factor of each of `ds`, for every stored wavevector. Each result is
 /// still Hermitian: every factor has f(−k) = conj f(k); the k = 0 entry of each is 0.
+///
+/// One parallel pass over the kx lines of h̃ writes every result: each task reads its
+/// line once, computes 1/|k| once (only when a factor needs it) and writes that line of
+/// each result, so the results' memory is first touched by all threads at once (no serial
+/// copy of h̃ per factor).
 pub fn derivative_spectra(
     half: &HalfSpectrum,
     spec: &GridSpec,
     ds: &[Derivative],
 ) -> Vec<HalfSpectrum> {
     let (nx, ny) = (half.nx, half.ny);
+    let len = half.data.len();
     let tau = std::f64::consts::TAU;
     let ky: Vec<f64> = (0..ny)
         .map(|j| tau * signed_index(j, ny) as f64 / spec.extent_y_m)
         .collect();
-    ds.iter()
-        .map(|&d| {
-            let mut data = half.data.clone();
-            data.par_chunks_mut(ny).enumerate().for_each_init(
-                || vec![0.0f64; ny],
-                |inv_k, (n, line)| {
-                    let kx = tau * n as f64 / spec.extent_x_m;
+    let with_inv_k = ds.iter().any(|d| d.needs_inv_k());
+    let mut outs: Vec<Vec<Complex32>> = ds.iter().map(|_| Vec::with_capacity(len)).collect();
+    // Line n of every result, side by side.
+    let mut lines: Vec<Vec<&mut [MaybeUninit<Complex32>]>> = (0..len / ny)
+        .map(|_| Vec::with_capacity(ds.len()))
+        .collect();
+    for out in outs.iter_mut() {
+        for (line, chunk) in lines
+            .iter_mut()
+            .zip(out.spare_capacity_mut()[..len].chunks_mut(ny))
+        {
+            line.push(chunk);
+        }
+    }
+    lines
+        .into_par_iter()
+        .zip(half.data.par_chunks(ny))
+        .enumerate()
+        .for_each_init(
+            || vec![0.0f64; ny],
+            |inv_k, (n, (mut targets, src))| {
+                let kx = tau * n as f64 / spec.extent_x_m;
+                if with_inv_k {
                     for (o, &ky) in inv_k.iter_mut().zip(&ky) {
                         let k2 = kx * kx + ky * ky;
                         let inv = 1.0 / k2.sqrt();
                         *o = if k2 > 0.0 { inv } else { 0.0 };
                     }
-                    d.apply(line, kx, &ky, inv_k);
-                },
-            );
+                }
+                for (d, target) in ds.iter().zip(targets.iter_mut()) {
+                    d.apply(src, target, kx, &ky, inv_k);
+                }
+            },
+        );
+    outs.into_iter()
+        .map(|mut data| {
+            // SAFETY: the pass above wrote every one of the `len` elements (the lines of
+            // h̃ tile 0..len, and `apply` writes each entry of its line).
+            unsafe { data.set_len(len) };
             HalfSpectrum {
                 nx,
                 ny,
@@ -150,6 +213,25 @@ impl Extras {
     }
 }
 
+/// The Jacobian J of a state's displacement.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Jacobian {
+    /// J = 1 exactly at every point: no displacement (λ = 0), so no field is stored.
+    One,
+    /// J at every grid point, row-major.
+    Field(Vec<f32>),
+}
+
+impl Jacobian {
+    /// J at each of the `len` grid points: the stored field, or `len` ones.
+    pub fn values(&self, len: usize) -> std::borrow::Cow<'_, [f32]> {
+        match self {
+            Jacobian::One => std::borrow::Cow::Owned(vec![1.0; len]),
+            Jacobian::Field(j) => std::borrow::Cow::Borrowed(j),
+        }
+    }
+}
+
 /// The derived fields of one state, each on the undisplaced grid, row-major.
 #[derive(Debug, Clone, Default)]
 pub struct Surface {
@@ -161,7 +243,7 @@ pub struct Surface {
     /// slopes when λ ≠ 0 so the normals are those of the displaced surface.
     pub displacement_gradient: Option<[Vec<f32>; 3]>,
     /// J of the displacement λD.
-    pub jacobian: Option<Vec<f32>>,
+    pub jacobian: Option<Jacobian>,
     /// The heights before the choppy resampling (the z of a displacement map), when
     /// λ ≠ 0 and the displacement was asked for.
     pub undisplaced_height: Option<Vec<f32>>,
@@ -222,13 +304,14 @@ pub fn surface(
     let displacement = choppy.then(|| [next(), next()]);
     let displacement_gradient = gradient.then(|| [next(), next(), next()]);
     let jacobian = extras.jacobian.then(|| match &displacement_gradient {
-        None => vec![1.0; spec.len()],
-        Some([xx, yy, xy]) => xx
-            .par_iter()
-            .zip(yy)
-            .zip(xy)
-            .map(|((&a, &b), &c)| (1.0 + a) * (1.0 + b) - c * c)
-            .collect(),
+        None => Jacobian::One,
+        Some([xx, yy, xy]) => Jacobian::Field(
+            xx.par_iter()
+                .zip(yy)
+                .zip(xy)
+                .map(|((&a, &b), &c)| (1.0 + a) * (1.0 + b) - c * c)
+                .collect(),
+        ),
     });
     Surface {
         slopes,
@@ -373,28 +456,64 @@ fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> (f64, f64) {
 /// Unit normals (x, y, z) of the surface (x0 + λD, h) at every grid point, z up: the
 /// cross product of the tangents (1 + λDx,x, λDy,x, hx) × (λDx,y, 1 + λDy,y, hy). Needs
 /// the slopes; `ddisp` is (λDx,x, λDy,y, λDx,y), taken as zero when None (λ = 0).
+///
+/// Scaled by one reciprocal square root per point (in f32 for a still sea, in f64 for a
+/// choppy one, where (1 + a)(1 + b) − c² cancels near folds), in parallel blocks; within
+/// [`NORMAL_F32_TOL`] of the f64 formula with a division per component.
 pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 3]> {
-    let n = slopes[0].len();
-    (0..n)
-        .into_par_iter()
-        .map(|p| {
-            let (hx, hy) = (slopes[0][p] as f64, slopes[1][p] as f64);
-            let (a, b, c) = match ddisp {
-                Some([xx, yy, xy]) => (xx[p] as f64, yy[p] as f64, xy[p] as f64),
-                None => (0.0, 0.0, 0.0),
-            };
-            // Tangents tx = (1 + a, c, hx), ty = (c, 1 + b, hy).
-            let nxv = c * hy - hx * (1.0 + b);
-            let nyv = hx * c - (1.0 + a) * hy;
+    const BLOCK: usize = 16384;
+    let [hx, hy] = slopes;
+    // Zeroed by the allocator: the pages are first touched by the parallel writes.
+    let mut out = vec![[0.0f32; 3]; hx.len()];
+    out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
+        let r = b * BLOCK..b * BLOCK + out.len();
+        let (hx, hy) = (&hx[r.clone()], &hy[r.clone()]);
+        match ddisp {
+            None => still_normals(hx, hy, out),
+            Some([xx, yy, xy]) => {
+                choppy_normals(hx, hy, [&xx[r.clone()], &yy[r.clone()], &xy[r]], out)
+            }
+        }
+    });
+    out
+}
+
+/// Largest difference between a component of [`normals`] and the f64 cross product divided
+/// by its length (a few f32 rounding errors of components ≤ 1).
+pub const NORMAL_F32_TOL: f64 = 1e-6;
+
+crate::field::lines::multiversion! {
+    /// λ = 0: the normal (−hx, −hy, 1)/√(1 + hx² + hy²).
+    fn still_normals(hx: &[f32], hy: &[f32], out: &mut [[f32; 3]]) {
+        for ((o, &x), &y) in out.iter_mut().zip(hx).zip(hy) {
+            let r = 1.0 / (1.0 + x * x + y * y).sqrt();
+            *o = [-x * r, -y * r, r];
+        }
+    }
+}
+
+crate::field::lines::multiversion! {
+    /// The normal of the tangents (1 + a, c, hx) × (c, 1 + b, hy), (0, 0, 1) where they
+    /// are parallel.
+    fn choppy_normals(hx: &[f32], hy: &[f32], d: [&[f32]; 3], out: &mut [[f32; 3]]) {
+        let [da, db, dc] = d;
+        let n = out.len();
+        let (hx, hy, da, db, dc) = (&hx[..n], &hy[..n], &da[..n], &db[..n], &dc[..n]);
+        for (i, o) in out.iter_mut().enumerate() {
+            // f64: (1 + a)(1 + b) − c² cancels near folds.
+            let [x, y, a, b, c] = [hx[i], hy[i], da[i], db[i], dc[i]].map(f64::from);
+            let nxv = c * y - x * (1.0 + b);
+            let nyv = x * c - (1.0 + a) * y;
             let nzv = (1.0 + a) * (1.0 + b) - c * c;
-            let len = (nxv * nxv + nyv * nyv + nzv * nzv).sqrt();
-            if len == 0.0 {
+            let len2 = nxv * nxv + nyv * nyv + nzv * nzv;
+            let r = 1.0 / len2.sqrt();
+            *o = if len2 == 0.0 {
                 [0.0, 0.0, 1.0]
             } else {
-                [(nxv / len) as f32, (nyv / len) as f32, (nzv / len) as f32]
-            }
-        })
-        .collect()
+                [(nxv * r) as f32, (nyv * r) as f32, (nzv * r) as f32]
+            };
+        }
+    }
 }
 
 #[cfg(test)]
@@ -511,11 +630,15 @@ mod tests {
             jacobian: true,
         };
         let s0 = surface(&half, &spec, &plan, all, 0.0);
-        assert!(s0.jacobian.unwrap().iter().all(|&j| j == 1.0));
+        let j0 = s0.jacobian.unwrap();
+        assert_eq!(j0, Jacobian::One, "no field stored for J = 1");
+        assert!(j0.values(spec.len()).iter().all(|&j| j == 1.0));
         let lambda = 0.5;
         let s = surface(&half, &spec, &plan, all, lambda);
         let d = s.displacement.unwrap();
-        let j = s.jacobian.unwrap();
+        let Some(Jacobian::Field(j)) = s.jacobian else {
+            panic!("a choppy sea has a Jacobian field");
+        };
         // J = 1 − λAk cos(kx + φ) = 1 + k·(λDx)' ... = 1 − λk·h(x) for the trochoid.
         let h = plan.process(HalfSpectrum {
             data: half.data.clone(),
@@ -644,5 +767,66 @@ mod tests {
         for c in 0..3 {
             assert!((n[1][c] as f64 - want[c]).abs() < 1e-6);
         }
+    }
+
+    /// The straightforward normal: the f64 cross product, each component divided by its
+    /// length.
+    fn reference_normal(hx: f64, hy: f64, a: f64, b: f64, c: f64) -> [f64; 3] {
+        let n = [
+            c * hy - hx * (1.0 + b),
+            hx * c - (1.0 + a) * hy,
+            (1.0 + a) * (1.0 + b) - c * c,
+        ];
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if len == 0.0 {
+            [0.0, 0.0, 1.0]
+        } else {
+            n.map(|v| v / len)
+        }
+    }
+
+    #[test]
+    fn normals_with_one_reciprocal_square_root_agree_with_the_f64_divisions() {
+        // Slopes up to ±8 (steeper than any sea) and displacement gradients up to ±0.9,
+        // from a fixed sequence; more points than one parallel block, an odd count.
+        let n = 40_001;
+        let field = |stream: u64, scale: f64| -> Vec<f32> {
+            (0..n as u64)
+                .map(|i| {
+                    let u =
+                        (crate::rng::mix64(stream << 32 | i) >> 11) as f64 / (1u64 << 53) as f64;
+                    ((u * 2.0 - 1.0) * scale) as f32
+                })
+                .collect()
+        };
+        let slopes = [field(1, 8.0), field(2, 8.0)];
+        let d = [field(3, 0.9), field(4, 0.9), field(5, 0.9)];
+        for ddisp in [None, Some([&d[0][..], &d[1][..], &d[2][..]])] {
+            let got = normals(&slopes, ddisp);
+            assert_eq!(got.len(), n);
+            let mut worst: f64 = 0.0;
+            for (p, g) in got.iter().enumerate() {
+                let [a, b, c] = ddisp.map_or([0.0; 3], |d| d.map(|f| f[p] as f64));
+                let want = reference_normal(slopes[0][p] as f64, slopes[1][p] as f64, a, b, c);
+                for k in 0..3 {
+                    let e = (g[k] as f64 - want[k]).abs();
+                    assert!(
+                        e <= NORMAL_F32_TOL,
+                        "choppy = {}, normal[{p}][{k}] = {} vs {}",
+                        ddisp.is_some(),
+                        g[k],
+                        want[k]
+                    );
+                    worst = worst.max(e);
+                }
+            }
+            eprintln!(
+                "normals (choppy = {}): worst difference {worst:.2e}",
+                ddisp.is_some()
+            );
+        }
+        // Parallel tangents (a fold edge): the normal points up, as documented.
+        let up = normals(&[vec![0.0], vec![0.0]], Some([&[-1.0], &[-1.0], &[0.0]]));
+        assert_eq!(up[0], [0.0, 0.0, 1.0]);
     }
 }

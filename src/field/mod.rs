@@ -368,7 +368,7 @@ impl Synthesizer {
             surface.displacement_gradient = None;
         }
         if extras.jacobian && surface.jacobian.is_none() {
-            surface.jacobian = Some(vec![1.0; spec.len()]);
+            surface.jacobian = Some(dynamics::Jacobian::One);
         }
         Synthesis {
             grid,
