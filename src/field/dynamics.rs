@@ -30,6 +30,7 @@
 //! moves x0 by less than 1e-4 of a sample. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
 //! (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
+use std::f64::consts::TAU;
 use std::mem::MaybeUninit;
 
 use rayon::prelude::*;
@@ -265,7 +266,8 @@ impl Surface {
 /// Computes the fields `extras` asks for (the displacement only when λ ≠ 0, where the
 /// choppy height needs it too, and the displacement gradient when λ ≠ 0 and the slopes are
 /// asked for, which the normals need) from h̃: all factors in one pass over h̃, then one
-/// complex-to-real transform per field.
+/// complex-to-real transform per field. (A test entry point: a frame uses
+/// [`surface_and_height`], which shares a transform with the height.)
 pub fn surface(
     half: &HalfSpectrum,
     spec: &GridSpec,
@@ -273,12 +275,36 @@ pub fn surface(
     extras: Extras,
     lambda: f64,
 ) -> Surface {
+    surface_and_height(
+        HalfSpectrum {
+            data: half.data.clone(),
+            ..*half
+        },
+        spec,
+        plan,
+        extras,
+        lambda,
+    )
+    .1
+}
+
+/// The height field of h̃ (consumed) and the [`surface`] fields. ∂h/∂x shares the
+/// height's transform along y (its factor i·kx is constant on a kx line, so it is
+/// applied between the two passes): three fields of a still sea cost two and a half
+/// transforms.
+pub fn surface_and_height(
+    half: HalfSpectrum,
+    spec: &GridSpec,
+    plan: &InverseFft2,
+    extras: Extras,
+    lambda: f64,
+) -> (Vec<f32>, Surface) {
     use Derivative::*;
     let choppy = lambda != 0.0;
     let gradient = choppy && (extras.jacobian || extras.slopes);
     let mut wanted = Vec::new();
     if extras.slopes {
-        wanted.extend([SlopeX, SlopeY]);
+        wanted.push(SlopeY);
     }
     // λD is zero without choppiness: no transform for it (a displacement map of a
     // still sea writes zeros).
@@ -288,19 +314,27 @@ pub fn surface(
     if gradient {
         wanted.extend([DxX, DyY, DxY]);
     }
+    let spectra = derivative_spectra(&half, spec, &wanted);
+    let (height, slope_x) = if extras.slopes {
+        // i·kx as `derivative_spectra` computes kx.
+        let i_kx: Vec<Complex32> = (0..half.lines())
+            .map(|n| Complex32::new(0.0, (TAU * n as f64 / spec.extent_x_m) as f32))
+            .collect();
+        let (h, sx) = plan.process_with_line_factor(half, &i_kx);
+        (h, Some(sx))
+    } else {
+        (plan.process(half), None)
+    };
     let l = lambda as f32;
-    let mut fields = derivative_spectra(half, spec, &wanted)
-        .into_iter()
-        .zip(&wanted)
-        .map(|(s, d)| {
-            let mut v = plan.process(s);
-            if !matches!(d, SlopeX | SlopeY) {
-                v.par_iter_mut().for_each(|x| *x *= l);
-            }
-            v
-        });
+    let mut fields = spectra.into_iter().zip(&wanted).map(|(s, d)| {
+        let mut v = plan.process(s);
+        if !matches!(d, SlopeX | SlopeY) {
+            v.par_iter_mut().for_each(|x| *x *= l);
+        }
+        v
+    });
     let mut next = || fields.next().expect("one field per wanted factor");
-    let slopes = extras.slopes.then(|| [next(), next()]);
+    let slopes = slope_x.map(|sx| [sx, next()]);
     let displacement = choppy.then(|| [next(), next()]);
     let displacement_gradient = gradient.then(|| [next(), next(), next()]);
     let jacobian = extras.jacobian.then(|| match &displacement_gradient {
@@ -313,13 +347,14 @@ pub fn surface(
                 .collect(),
         ),
     });
-    Surface {
+    let surface = Surface {
         slopes,
         displacement_gradient: displacement_gradient.filter(|_| extras.slopes),
         displacement,
         jacobian,
         undisplaced_height: None,
-    }
+    };
+    (height, surface)
 }
 
 /// A sample index wrapped into 0..n (no division for the usual in-range values).

@@ -314,10 +314,13 @@ impl Synthesizer {
             if params.method != Method::FilteredNoise {
                 info.h0max_m = Some(half.h0max_m);
             }
-            if extras.any() || lambda != 0.0 {
-                surface = dynamics::surface(&half, &spec, plan, extras, lambda);
-            }
-            let mut data = plan.process(half);
+            let mut data = if extras.any() || lambda != 0.0 {
+                let (data, s) = dynamics::surface_and_height(half, &spec, plan, extras, lambda);
+                surface = s;
+                data
+            } else {
+                plan.process(half)
+            };
             if let Some(d) = surface.displacement.as_ref().filter(|_| lambda != 0.0) {
                 let choppy = dynamics::resample_choppy(&data, d, &spec);
                 let still = std::mem::replace(&mut data, choppy);
