@@ -56,19 +56,24 @@ impl RadialLine {
         }
     }
 
-    /// Entries `0..=h−1` as computed, then entry `j ≥ h` from entry `n − j`.
-    fn mirror_into(&self, n: usize, out: &mut RadialLine) {
+    /// Entries `0..=h−1` as computed, then entry `j ≥ h` from entry `n − j` (β only
+    /// `with_beta`: the other spreadings do not read it).
+    fn mirror_into(&self, n: usize, with_beta: bool, out: &mut RadialLine) {
         out.resize(n);
         let h = self.a.len();
-        for (src, dst) in [
+        let mut pairs = vec![
             (&self.inv_k, &mut out.inv_k),
             (&self.a, &mut out.a),
             (&self.s, &mut out.s),
-            (&self.beta, &mut out.beta),
-        ] {
+        ];
+        if with_beta {
+            pairs.push((&self.beta, &mut out.beta));
+        }
+        for (src, dst) in pairs {
             dst[..h].copy_from_slice(src);
-            for j in h..n {
-                dst[j] = src[n - j];
+            // dst[j] = src[n − j] for j = h..n: src[n − h] down to src[1].
+            for (d, s) in dst[h..n].iter_mut().zip(src[1..=n - h].iter().rev()) {
+                *d = *s;
             }
         }
     }
@@ -422,7 +427,7 @@ impl Kernel {
         k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
         let radial = if mirrored {
             self.radial_line(k2, freq, radial_scratch, half);
-            half.mirror_into(n, full);
+            half.mirror_into(n, self.kind == SpreadKind::DonelanBanner, full);
             &*full
         } else {
             self.radial_line(k2, freq, radial_scratch, full);
