@@ -687,16 +687,17 @@ impl Kernel {
         }
     }
 
-    /// Ψ from its radial part and the direction: a·m(θ)·cos^{2s}(θ/2).
+    /// Ψ without its power cos^{2s}(θ/2): `Err(Ψ)` where there is no power to take (no
+    /// energy, plain cos², s = 0), else `Ok((a·m(θ), cos θ))`.
     #[inline(always)]
-    fn angular(&self, r: &Radial, kx: f64, ky: f64) -> f64 {
+    fn before_power(&self, r: &Radial, kx: f64, ky: f64) -> Result<(f64, f64), f64> {
         if r.a == 0.0 {
-            return 0.0;
+            return Err(0.0);
         }
         let cu = kx * self.wx + ky * self.wy;
         let c = cu * r.inv_k;
         let m = match self.kind {
-            SpreadKind::Cos2Plain => return r.a * (c * c),
+            SpreadKind::Cos2Plain => return Err(r.a * (c * c)),
             SpreadKind::Family => r.a,
             SpreadKind::Cos2Swell => r.a * (c * c),
             SpreadKind::DonelanBanner => {
@@ -704,9 +705,16 @@ impl Kernel {
                 r.a * sech2(r.beta * atan2_pos(su, cu))
             }
         };
-        if r.s == 0.0 {
-            return m;
-        }
+        if r.s == 0.0 { Err(m) } else { Ok((m, c)) }
+    }
+
+    /// Ψ from its radial part and the direction: a·m(θ)·cos^{2s}(θ/2).
+    #[inline(always)]
+    fn angular(&self, r: &Radial, kx: f64, ky: f64) -> f64 {
+        let (m, c) = match self.before_power(r, kx, ky) {
+            Ok(parts) => parts,
+            Err(psi) => return psi,
+        };
         let e = r.s * ln_half_one_plus(c);
         // Below the floor the power is negligible (and the products would be subnormal).
         if e < POWER_EXPONENT_MIN {
@@ -722,24 +730,10 @@ impl Kernel {
     /// cell's radial value), which the line passes compute 8 or 16 lanes at a time.
     #[inline(always)]
     fn angular_grid(&self, r: &Radial, kx: f64, ky: f64) -> f64 {
-        if r.a == 0.0 {
-            return 0.0;
+        match self.before_power(r, kx, ky) {
+            Ok((m, c)) => m * f64::from(pow_unit_f32(half_one_plus_f32(c), power_f32(r.s))),
+            Err(psi) => psi,
         }
-        let cu = kx * self.wx + ky * self.wy;
-        let c = cu * r.inv_k;
-        let m = match self.kind {
-            SpreadKind::Cos2Plain => return r.a * (c * c),
-            SpreadKind::Family => r.a,
-            SpreadKind::Cos2Swell => r.a * (c * c),
-            SpreadKind::DonelanBanner => {
-                let su = (ky * self.wx - kx * self.wy).abs();
-                r.a * sech2(r.beta * atan2_pos(su, cu))
-            }
-        };
-        if r.s == 0.0 {
-            return m;
-        }
-        m * f64::from(pow_unit_f32(half_one_plus_f32(c), power_f32(r.s)))
     }
 
     #[inline(always)]
