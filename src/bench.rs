@@ -24,16 +24,19 @@ fn median(mut v: Vec<Duration>) -> Duration {
     v[v.len() / 2]
 }
 
-fn time<T>(repeats: usize, mut f: impl FnMut() -> T) -> Duration {
-    median(
-        (0..repeats)
-            .map(|_| {
-                let t = Instant::now();
-                std::hint::black_box(f());
-                t.elapsed()
-            })
-            .collect(),
-    )
+/// The median wall time of `repeats` runs of `f`.
+fn time<T>(repeats: usize, f: impl FnMut() -> T) -> Duration {
+    time_cpu(repeats, f).0
+}
+
+/// One row of a size's table: the stage, its time and its ratio to the bare FFT.
+fn print_row(name: &str, d: Duration, bare: Duration) {
+    println!(
+        "  {:<30} {:>10.1} {:>8.2}",
+        name,
+        d.as_secs_f64() * 1e3,
+        d.as_secs_f64() / bare.as_secs_f64()
+    );
 }
 
 /// CPU time of the whole process (user + system, every thread) so far.
@@ -93,7 +96,7 @@ fn bare_fft(nx: usize, ny: usize, repeats: usize) -> Duration {
 /// E|h̃0(±k)|² of every wavevector of the half plane (the spectrum alone, without the
 /// random draws). Each line is passed through `black_box`, so nothing is optimized away
 /// and nothing is added to the spectrum's own cost.
-pub fn amplitude_variances(setup: &fft::SpectrumSetup) -> f64 {
+fn amplitude_variances(setup: &fft::SpectrumSetup) -> f64 {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     let (dkx, dky) = setup.dk();
     let ky: Vec<f64> = (0..ny)
@@ -348,12 +351,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         );
         println!("  {:<30} {:>10} {:>8}", "stage", "ms", "ratio");
         for (name, d) in rows {
-            println!(
-                "  {:<30} {:>10.1} {:>8.2}",
-                name,
-                d.as_secs_f64() * 1e3,
-                d.as_secs_f64() / bare.as_secs_f64()
-            );
+            print_row(name, d, bare);
         }
         for (ext, bytes) in sizes {
             println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
@@ -373,26 +371,15 @@ pub fn run(args: BenchArgs) -> Result<()> {
 fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
     use crate::field::trochoid::{RowScratch, TrochoidSea};
     let mut params = crate::config::presets::load("thon-2000")?;
-    params.grid.size = crate::config::Size2([n, n]);
-    params.grid.extent_m = crate::config::Extent2([n as f64, n as f64]);
+    params.grid = bench_params(n).grid;
     let spec = params.grid_spec();
     let setup = time(repeats, || {
         TrochoidSea::new(&params).expect("a valid preset")
     });
     let sea = TrochoidSea::new(&params)?;
     let field = time(repeats, || sea.grid(&spec, 0.0));
-    println!(
-        "  {:<30} {:>10.1} {:>8.2}",
-        "trochoid setup and fit",
-        setup.as_secs_f64() * 1e3,
-        setup.as_secs_f64() / bare.as_secs_f64()
-    );
-    println!(
-        "  {:<30} {:>10.1} {:>8.2}",
-        "trochoid field (thon-2000)",
-        field.as_secs_f64() * 1e3,
-        field.as_secs_f64() / bare.as_secs_f64()
-    );
+    print_row("trochoid setup and fit", setup, bare);
+    print_row("trochoid field (thon-2000)", field, bare);
     // One core: 64 rows in this thread.
     let rows = 64.min(n);
     let per_core = |p: &Params| -> Result<f64> {

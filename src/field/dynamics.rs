@@ -122,6 +122,11 @@ impl Derivative {
     }
 }
 
+/// kx of the spectrum's line n, rad/m.
+fn line_kx(spec: &GridSpec, n: usize) -> f64 {
+    TAU * n as f64 / spec.extent_x_m
+}
+
 /// h̃(k) times the factor of each of `ds`, for every stored wavevector. Each result is
 /// still Hermitian: every factor has f(−k) = conj f(k); the k = 0 entry of each is 0.
 ///
@@ -136,7 +141,7 @@ pub fn derivative_spectra(
 ) -> Vec<HalfSpectrum> {
     let (nx, ny) = (half.nx, half.ny);
     let len = half.data.len();
-    let tau = std::f64::consts::TAU;
+    let tau = TAU;
     let ky: Vec<f64> = (0..ny)
         .map(|j| tau * signed_index(j, ny) as f64 / spec.extent_y_m)
         .collect();
@@ -161,7 +166,7 @@ pub fn derivative_spectra(
         .for_each_init(
             || vec![0.0f64; ny],
             |inv_k, (n, (mut targets, src))| {
-                let kx = tau * n as f64 / spec.extent_x_m;
+                let kx = line_kx(spec, n);
                 if with_inv_k {
                     for (o, &ky) in inv_k.iter_mut().zip(&ky) {
                         let k2 = kx * kx + ky * ky;
@@ -187,17 +192,6 @@ pub fn derivative_spectra(
             }
         })
         .collect()
-}
-
-/// The real field of `d` on the grid.
-pub fn derived_field(
-    half: &HalfSpectrum,
-    spec: &GridSpec,
-    plan: &InverseFft2,
-    d: Derivative,
-) -> Vec<f32> {
-    let one = derivative_spectra(half, spec, &[d]).pop();
-    plan.process(one.expect("one spectrum asked for"))
 }
 
 /// Which derived fields a run needs.
@@ -263,32 +257,10 @@ impl Surface {
     }
 }
 
-/// Computes the fields `extras` asks for (the displacement only when λ ≠ 0, where the
-/// choppy height needs it too, and the displacement gradient when λ ≠ 0 and the slopes are
-/// asked for, which the normals need) from h̃: all factors in one pass over h̃, then one
-/// complex-to-real transform per field. (A test entry point: a frame uses
-/// [`surface_and_height`], which shares a transform with the height.)
-pub fn surface(
-    half: &HalfSpectrum,
-    spec: &GridSpec,
-    plan: &InverseFft2,
-    extras: Extras,
-    lambda: f64,
-) -> Surface {
-    surface_and_height(
-        HalfSpectrum {
-            data: half.data.clone(),
-            ..*half
-        },
-        spec,
-        plan,
-        extras,
-        lambda,
-    )
-    .1
-}
-
-/// The height field of h̃ (consumed) and the [`surface`] fields. ∂h/∂x shares the
+/// The height field of h̃ (consumed) and the fields `extras` asks for (the displacement
+/// only when λ ≠ 0, where the choppy height needs it too, and the displacement gradient
+/// when λ ≠ 0 and the slopes are asked for, which the normals need): all factors in one
+/// pass over h̃, then one complex-to-real transform per field. ∂h/∂x shares the
 /// height's transform along y (its factor i·kx is constant on a kx line, so it is
 /// applied between the two passes): three fields of a still sea cost two and a half
 /// transforms.
@@ -316,9 +288,8 @@ pub fn surface_and_height(
     }
     let spectra = derivative_spectra(&half, spec, &wanted);
     let (height, slope_x) = if extras.slopes {
-        // i·kx as `derivative_spectra` computes kx.
         let i_kx: Vec<Complex32> = (0..half.lines())
-            .map(|n| Complex32::new(0.0, (TAU * n as f64 / spec.extent_x_m) as f32))
+            .map(|n| Complex32::new(0.0, line_kx(spec, n) as f32))
             .collect();
         let (h, sx) = plan.process_with_line_factor(half, &i_kx);
         (h, Some(sx))
@@ -554,6 +525,21 @@ crate::field::lines::multiversion! {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The derived fields of `half` (a copy of it is consumed).
+    fn surface(
+        half: &HalfSpectrum,
+        spec: &GridSpec,
+        plan: &InverseFft2,
+        extras: Extras,
+        lambda: f64,
+    ) -> Surface {
+        let copy = HalfSpectrum {
+            data: half.data.clone(),
+            ..*half
+        };
+        surface_and_height(copy, spec, plan, extras, lambda).1
+    }
     use crate::field::fft::{OneComponent, SpectrumSetup, synthesize_spectrum};
     use crate::spectrum::{Dispersion, Phillips, Spectrum};
 
@@ -720,6 +706,48 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_x_slope_sharing_the_height_transform_equals_its_own_transform() {
+        // The factor i·kx applied after the transform along y instead of before: the same
+        // field up to single-precision rounding; the height is the plain transform's, bit
+        // for bit.
+        const REL_TOL: f64 = 1e-5;
+        let ph = Phillips::new(3e-7, 8.0, 0.4, 0.5);
+        let spec = GridSpec::new(128, 96, 64.0, 48.0);
+        let half = synthesize_spectrum(&setup(spec, &ph, 0.0));
+        let plan = InverseFft2::new(spec.nx, spec.ny);
+        let copy = || HalfSpectrum {
+            data: half.data.clone(),
+            ..half
+        };
+        let alone = plan.process(
+            derivative_spectra(&half, &spec, &[Derivative::SlopeX])
+                .pop()
+                .expect("one asked for"),
+        );
+        let slopes = Extras {
+            slopes: true,
+            ..Default::default()
+        };
+        let (h, s) = surface_and_height(copy(), &spec, &plan, slopes, 0.0);
+        assert_eq!(
+            h,
+            plan.process(copy()),
+            "the height is the plain transform's"
+        );
+        let [shared, _] = s.slopes.expect("asked for");
+        let scale = alone.iter().fold(0.0f64, |m, &v| m.max(v.abs() as f64));
+        assert!(scale > 0.0);
+        let worst = shared
+            .iter()
+            .zip(&alone)
+            .fold(0.0f64, |m, (&a, &b)| m.max((a - b).abs() as f64));
+        assert!(
+            worst < REL_TOL * scale,
+            "∂h/∂x: largest difference {worst:e} of {scale:e}"
+        );
     }
 
     #[test]

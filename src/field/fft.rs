@@ -68,11 +68,17 @@ pub struct SpectrumSetup<'a> {
 /// ω rounded to the nearest non-zero multiple of 2π/T: waves slower than 2π/T take one
 /// cycle per period instead of freezing; ω = 0 stays 0.
 pub fn loop_omega(omega: f64, period_s: f64) -> f64 {
+    loop_omega_base(omega, std::f64::consts::TAU / period_s)
+}
+
+/// [`loop_omega`] given the base frequency 2π/T (straight-line code, for the line passes).
+#[inline(always)]
+fn loop_omega_base(omega: f64, base: f64) -> f64 {
     if omega == 0.0 {
-        return 0.0;
+        0.0
+    } else {
+        (omega / base).round().max(1.0) * base
     }
-    let base = std::f64::consts::TAU / period_s;
-    (omega / base).round().max(1.0) * base
 }
 
 impl SpectrumSetup<'_> {
@@ -122,11 +128,16 @@ impl SpectrumSetup<'_> {
         if self.time_s == 0.0 {
             return 0.0;
         }
-        let t = match self.loop_period_s {
+        self.omega(kx, ky) * self.phase_time()
+    }
+
+    /// The time the phases ω·t use: t, or t mod T with a loop period T.
+    #[inline]
+    fn phase_time(&self) -> f64 {
+        match self.loop_period_s {
             Some(period) => self.time_s - period * (self.time_s / period).floor(),
             None => self.time_s,
-        };
-        self.omega(kx, ky) * t
+        }
     }
 
     /// h̃0 at indices `(n, m)`: (ξr + iξi)/√2·√P(k).
@@ -421,15 +432,11 @@ fn deep_phases(
     xa: &mut [f64],
     xb: &mut [f64],
 ) {
-    let t = match setup.loop_period_s {
-        Some(period) => setup.time_s - period * (setup.time_s / period).floor(),
-        None => setup.time_s,
-    };
     // base = 0 stands for no loop.
     let base = setup
         .loop_period_s
         .map_or(0.0, |p| std::f64::consts::TAU / p);
-    deep_phase_run(kx, ky, t, base, d.pha, d.phb, xa, xb);
+    deep_phase_run(kx, ky, setup.phase_time(), base, d.pha, d.phb, xa, xb);
 }
 
 multiversion! {
@@ -449,8 +456,7 @@ multiversion! {
         for j in 0..n {
             let y = ky[j];
             let w = (crate::spectrum::G * (kx * kx + y * y).sqrt()).sqrt();
-            let looped = if w == 0.0 { 0.0 } else { (w / base).round().max(1.0) * base };
-            let w = if base > 0.0 { looped } else { w };
+            let w = if base > 0.0 { loop_omega_base(w, base) } else { w };
             let wt = w * t;
             xa[j] = pha[j] - wt;
             xb[j] = phb[j] - wt;
