@@ -56,7 +56,7 @@ use super::frequency::{
 };
 use super::spreading::{
     DB_R_1, DB_R_2, DB_R_MIN, Spreading, SpreadingModel, db_beta_branch, donelan_banner_norm,
-    ln_half_one_plus, ln_np, ln_z_cos2, mitsuyasu_s_max, sech2, tanh,
+    half_one_plus, ln_half_one_plus, ln_np, ln_z_cos2, mitsuyasu_s_max, sech2, tanh,
 };
 use super::{Dispersion, G, Spectrum};
 use crate::error::ParamError;
@@ -780,7 +780,7 @@ impl Radial {
 /// the smallest normal `f32` (the power's domain).
 #[inline(always)]
 fn half_one_plus_f32(c: f64) -> f32 {
-    ((0.5 + 0.5 * c).max(f64::MIN_POSITIVE) as f32).max(f32::MIN_POSITIVE)
+    (half_one_plus(c) as f32).max(f32::MIN_POSITIVE)
 }
 
 /// The spreading exponent s as the power's single-precision exponent (finite).

@@ -124,7 +124,14 @@ pub(crate) fn wrap_abs(theta: f64) -> f64 {
 /// ln((1 + c)/2) = ln cos²(θ/2) for c = cos θ, finite (clamped at the smallest normal).
 #[inline]
 pub(crate) fn ln_half_one_plus(c: f64) -> f64 {
-    ln((0.5 + 0.5 * c).max(f64::MIN_POSITIVE))
+    ln(half_one_plus(c))
+}
+
+/// (1 + c)/2 = cos²(θ/2) for c = cos θ, kept at or above the smallest normal `f64` (so
+/// that its logarithm and powers stay finite).
+#[inline(always)]
+pub(crate) fn half_one_plus(c: f64) -> f64 {
+    (0.5 + 0.5 * c).max(f64::MIN_POSITIVE)
 }
 
 /// tanh x for x ≥ 0 with fastmath's exp (portable); relative error ≈ 1e-15.
