@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::export::Staged;
+use crate::grid::Stats;
 
 /// How a job ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -31,16 +32,6 @@ impl Status {
     }
 }
 
-/// Statistics of a job's field, meters.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct RowStats {
-    pub hs_m: f64,
-    pub min_m: f64,
-    pub max_m: f64,
-    pub mean_m: f64,
-    pub std_m: f64,
-}
-
 /// One job of the index.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
@@ -51,7 +42,8 @@ pub struct Row {
     pub params: BTreeMap<String, String>,
     /// The files written, relative to the index's folder (outputs, then the sidecar).
     pub files: Vec<String>,
-    pub stats: Option<RowStats>,
+    /// Statistics of the job's field.
+    pub stats: Option<Stats>,
     /// Seconds the job took (none when kept from an earlier run).
     pub seconds: Option<f64>,
     /// The parameter hash recorded in the job's sidecar.
@@ -287,7 +279,7 @@ mod tests {
             status: Status::Ok,
             params: BTreeMap::from([("a".to_string(), "x,y".to_string())]),
             files: vec![format!("{job}.png"), format!("{job}.json")],
-            stats: Some(RowStats {
+            stats: Some(Stats {
                 hs_m: 1.0,
                 min_m: -0.5,
                 max_m: 0.5,

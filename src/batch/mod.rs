@@ -28,7 +28,7 @@ use crate::export::options::{ExportArgs, ExportOptions};
 use crate::export::{Format, HeightMapping, Staged};
 use crate::field::Synthesis;
 use crate::jobs::{self, FileKind, Progress};
-use index::{Index, Row, RowStats, Status};
+use index::{Index, Row, Status};
 use plan::{JobSpec, Manifest, NameTemplate, Shard, Sweep};
 
 #[derive(Debug, Args)]
@@ -562,7 +562,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
                         files: complete_files(&job.name, &suffixes, &records[i].hash, &dir)
                             .map(|(f, _)| f)
                             .unwrap_or_default(),
-                        stats: Some(row_stats(&w.stats)),
+                        stats: Some(w.stats),
                         seconds: Some(seconds),
                         hash: Some(records[i].hash.clone()),
                         error: None,
@@ -646,16 +646,6 @@ pub fn run(args: BatchArgs) -> Result<()> {
     Ok(())
 }
 
-fn row_stats(s: &crate::grid::Stats) -> RowStats {
-    RowStats {
-        hs_m: s.hs_m,
-        min_m: s.min_m,
-        max_m: s.max_m,
-        mean_m: s.mean_m,
-        std_m: s.std_m,
-    }
-}
-
 /// The files of a complete job, relative to the folder, and its statistics, from its
 /// sidecar `DIR/NAME.json`: the files the sidecar lists (the height outputs, or their
 /// tiles), the tile index, the maps and previews (`NAME.KIND.ext`, which the sidecar does
@@ -703,7 +693,7 @@ fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> O
         status: Status::Kept,
         params: job.values.clone(),
         files,
-        stats: Some(row_stats(&stats)),
+        stats: Some(stats),
         seconds: None,
         hash: Some(record.hash.clone()),
         error: None,
