@@ -288,11 +288,13 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     .find(|a| canonical_key(&a.key) == canonical_key(k))
                     .map(|a| a.value.clone())
             };
-            let value = |k: &str| match &params {
-                Ok(p) => plan::value_text(p, k)
+            // The parameters as a tree once, not once per key and name placeholder.
+            let tree = params.as_ref().ok().and_then(plan::params_tree);
+            let value = |k: &str| {
+                tree.as_ref()
+                    .and_then(|t| plan::value_text(t, k))
                     .or_else(|| typed(k))
-                    .unwrap_or_default(),
-                Err(_) => typed(k).unwrap_or_default(),
+                    .unwrap_or_default()
             };
             let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
             let name = template.render(index, total, value);
