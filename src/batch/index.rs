@@ -146,19 +146,13 @@ impl Index {
 
 /// The index files to merge in `dir`: its shard indexes, or else its `index.json`.
 fn indexes_in(dir: &Path) -> Result<Vec<PathBuf>> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::Input {
+    let mut shards = super::files_named(dir, |n| {
+        n.starts_with("index.shard-") && n.ends_with(".json")
+    })
+    .map_err(|e| Error::Input {
         path: dir.to_path_buf(),
         message: format!("cannot read the folder: {e}"),
     })?;
-    let mut shards: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("index.shard-") && n.ends_with(".json"))
-        })
-        .collect();
     shards.sort();
     if shards.is_empty() && dir.join("index.json").is_file() {
         shards.push(dir.join("index.json"));

@@ -702,22 +702,21 @@ fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> O
     })
 }
 
+/// The entries of folder `dir` whose name is UTF-8 and satisfies `wanted`.
+fn files_named(dir: &Path, wanted: impl Fn(&str) -> bool) -> std::io::Result<Vec<PathBuf>> {
+    Ok(std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(&wanted))
+        .collect())
+}
+
 /// Removes the temporary files a killed run left for these jobs (`.NAME.….part`, the
 /// staging names of `export::Staged`). Only this run's jobs: shards sharing the folder
 /// keep theirs.
 fn remove_stale_temporaries<'a>(dir: &Path, names: impl Iterator<Item = &'a str>) -> Result<()> {
-    let stale: Vec<PathBuf> = match std::fs::read_dir(dir) {
-        Ok(entries) => entries
-            .filter_map(|e| e.ok())
-            .map(|e| e.path())
-            .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with('.') && n.ends_with(".part"))
-            })
-            .collect(),
-        Err(e) => return Err(Error::io(dir, e).into()),
-    };
+    let stale = files_named(dir, |n| n.starts_with('.') && n.ends_with(".part"))
+        .map_err(|e| Error::io(dir, e))?;
     if stale.is_empty() {
         return Ok(());
     }
