@@ -139,6 +139,21 @@ struct Job {
 }
 
 impl Job {
+    /// The job's index row: its number, name, swept values and `status`, nothing else.
+    fn row(&self, status: Status) -> Row {
+        Row {
+            job: self.index,
+            name: self.name.clone(),
+            status,
+            params: self.values.clone(),
+            files: Vec::new(),
+            stats: None,
+            seconds: None,
+            hash: None,
+            error: None,
+        }
+    }
+
     fn paths(&self, dir: &Path, suffixes: &[String]) -> Vec<PathBuf> {
         suffixes
             .iter()
@@ -557,17 +572,13 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 ));
                 (
                     Row {
-                        job: i,
-                        name: job.name.clone(),
-                        status: Status::Ok,
-                        params: job.values.clone(),
                         files: complete_files(&job.name, &suffixes, &records[i].hash, &dir)
                             .map(|(f, _)| f)
                             .unwrap_or_default(),
                         stats: Some(w.stats),
                         seconds: Some(seconds),
                         hash: Some(records[i].hash.clone()),
-                        error: None,
+                        ..job.row(Status::Ok)
                     },
                     true,
                 )
@@ -580,15 +591,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 progress.finished(&format!("{label}: FAILED"));
                 (
                     Row {
-                        job: i,
-                        name: job.name.clone(),
-                        status: Status::Failed,
-                        params: job.values.clone(),
-                        files: Vec::new(),
-                        stats: None,
                         seconds: Some(seconds),
-                        hash: None,
                         error: Some(message),
+                        ..job.row(Status::Failed)
                     },
                     usage,
                 )
@@ -690,15 +695,10 @@ fn complete_files(
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
     Some(Row {
-        job: job.index,
-        name: job.name.clone(),
-        status: Status::Kept,
-        params: job.values.clone(),
         files,
         stats: Some(stats),
-        seconds: None,
         hash: Some(record.hash.clone()),
-        error: None,
+        ..job.row(Status::Kept)
     })
 }
 
