@@ -317,9 +317,10 @@ impl KGrid {
         // Bins of the coarser axis' spacing, but at most MAX_BINS_PER_SAMPLE per sample of
         // the longer side: a grid of very unequal spacings (1e-6 m by 1e9 m) would
         // otherwise ask for 1e15 bins.
+        let k_max = kx_max.hypot(ky_max);
         let cap = (MAX_BINS_PER_SAMPLE * nx.max(ny)) as f64;
-        let dk = (tau / spec.extent_x_m.max(spec.extent_y_m)).max(kx_max.hypot(ky_max) / cap);
-        let nbins = ((kx_max.hypot(ky_max) / dk).round() as usize) + 2;
+        let dk = (tau / spec.extent_x_m.max(spec.extent_y_m)).max(k_max / cap);
+        let nbins = ((k_max / dk).round() as usize) + 2;
         Self {
             nx,
             ny,

@@ -25,6 +25,16 @@ fn rows(index: &Value) -> &Vec<Value> {
     index["rows"].as_array().expect("rows")
 }
 
+/// The files an index row lists.
+fn files_of(row: &Value) -> Vec<&str> {
+    row["files"]
+        .as_array()
+        .expect("files")
+        .iter()
+        .map(|f| f.as_str().expect("a file name"))
+        .collect()
+}
+
 /// The files of a folder that a batch writes per job (not its index or batch.json).
 fn job_files(dir: &Path) -> BTreeSet<String> {
     names_in(dir)
@@ -186,21 +196,15 @@ fn a_batch_killed_in_the_middle_resumes_to_the_same_bytes_as_an_uninterrupted_ru
         "1",
         "-q",
     ];
-    let with_dir = |out: &str, resume: bool| {
-        let mut v: Vec<String> = args.iter().map(|s| s.to_string()).collect();
-        v.extend(["-o".to_string(), out.to_string()]);
+    let with_dir = |out: &'static str, resume: bool| {
+        let mut v = args.to_vec();
+        v.extend(["-o", out]);
         if resume {
-            v.push("--resume".into());
+            v.push("--resume");
         }
         v
     };
-    run_ok(
-        d,
-        &with_dir("whole", false)
-            .iter()
-            .map(String::as_str)
-            .collect::<Vec<_>>(),
-    );
+    run_ok(d, &with_dir("whole", false));
     let jobs = 24;
     let sidecars = |p: &Path| {
         names_in(p)
@@ -243,13 +247,7 @@ fn a_batch_killed_in_the_middle_resumes_to_the_same_bytes_as_an_uninterrupted_ru
     // A staging file left by a killed job, as SIGKILL leaves them.
     let stale = cut.join(".20_wind-dir=300.png.abc123.part");
     std::fs::write(&stale, b"partial").unwrap();
-    run_ok(
-        d,
-        &with_dir("cut", true)
-            .iter()
-            .map(String::as_str)
-            .collect::<Vec<_>>(),
-    );
+    run_ok(d, &with_dir("cut", true));
     let whole = d.join("whole");
     assert_eq!(
         job_files(&cut),
@@ -292,19 +290,17 @@ fn resume_redoes_a_job_whose_sidecar_holds_other_parameters() {
         ]),
     );
     // The same names under another height range: every job's hash differs.
-    run_ok(
-        d,
-        &batch(&[
-            "--sweep",
-            "seed=1,2",
-            "-o",
-            "b",
-            "-q",
-            "--height-range",
-            "-2:2",
-            "--resume",
-        ]),
-    );
+    let other_range = batch(&[
+        "--sweep",
+        "seed=1,2",
+        "-o",
+        "b",
+        "-q",
+        "--height-range",
+        "-2:2",
+        "--resume",
+    ]);
+    run_ok(d, &other_range);
     let index = json_file(&d.join("b/index.json"));
     assert!(
         rows(&index).iter().all(|r| r["status"] == "ok"),
@@ -314,19 +310,8 @@ fn resume_redoes_a_job_whose_sidecar_holds_other_parameters() {
         num(&json_file(&d.join("b/0_seed=1.json")), "/mapping/min_m"),
         -2.0
     );
-    run_ok(
-        d,
-        &batch(&[
-            "--sweep",
-            "seed=1,2",
-            "-o",
-            "b",
-            "-q",
-            "--height-range",
-            "-2:2",
-            "--resume",
-        ]),
-    );
+    // The same command again: now every job is complete with its hash.
+    run_ok(d, &other_range);
     let index = json_file(&d.join("b/index.json"));
     assert!(
         rows(&index).iter().all(|r| r["status"] == "kept"),
@@ -387,8 +372,7 @@ fn shards_cover_every_job_exactly_once_and_their_indexes_merge() {
         "every job once, in order"
     );
     for r in rows(&merged) {
-        for f in r["files"].as_array().unwrap() {
-            let f = f.as_str().unwrap();
+        for f in files_of(r) {
             assert!(
                 d.join("shared").join(f).is_file(),
                 "{f} of the merged index"
@@ -470,12 +454,7 @@ fn the_index_lists_the_files_on_disk_with_their_statistics() {
     assert_eq!(csv.lines().count(), 1 + 4, "a header and one line per job");
     let mut listed = BTreeSet::new();
     for (r, line) in rows(&index).iter().zip(csv.lines().skip(1)) {
-        let files: Vec<&str> = r["files"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|f| f.as_str().unwrap())
-            .collect();
+        let files = files_of(r);
         assert_eq!(files.len(), 4, "tif, png, normal map and sidecar");
         for f in &files {
             assert!(b.join(f).is_file(), "{f} is listed but not on disk");
@@ -719,12 +698,7 @@ fn tiled_jobs_list_their_tiles_and_are_kept_by_resume() {
     let index = json_file(&d.join("t/index.json"));
     let mut listed = BTreeSet::new();
     for r in rows(&index) {
-        let files: Vec<&str> = r["files"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|f| f.as_str().unwrap())
-            .collect();
+        let files = files_of(r);
         assert_eq!(
             files.len(),
             4 + 1 + 1 + 1,

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::export::Staged;
+use crate::grid::Stats;
 
 /// How a job ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -31,16 +32,6 @@ impl Status {
     }
 }
 
-/// Statistics of a job's field, meters.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct RowStats {
-    pub hs_m: f64,
-    pub min_m: f64,
-    pub max_m: f64,
-    pub mean_m: f64,
-    pub std_m: f64,
-}
-
 /// One job of the index.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
@@ -51,7 +42,8 @@ pub struct Row {
     pub params: BTreeMap<String, String>,
     /// The files written, relative to the index's folder (outputs, then the sidecar).
     pub files: Vec<String>,
-    pub stats: Option<RowStats>,
+    /// Statistics of the job's field.
+    pub stats: Option<Stats>,
     /// Seconds the job took (none when kept from an earlier run).
     pub seconds: Option<f64>,
     /// The parameter hash recorded in the job's sidecar.
@@ -154,19 +146,13 @@ impl Index {
 
 /// The index files to merge in `dir`: its shard indexes, or else its `index.json`.
 fn indexes_in(dir: &Path) -> Result<Vec<PathBuf>> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::Input {
+    let mut shards = super::files_named(dir, |n| {
+        n.starts_with("index.shard-") && n.ends_with(".json")
+    })
+    .map_err(|e| Error::Input {
         path: dir.to_path_buf(),
         message: format!("cannot read the folder: {e}"),
     })?;
-    let mut shards: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("index.shard-") && n.ends_with(".json"))
-        })
-        .collect();
     shards.sort();
     if shards.is_empty() && dir.join("index.json").is_file() {
         shards.push(dir.join("index.json"));
@@ -287,7 +273,7 @@ mod tests {
             status: Status::Ok,
             params: BTreeMap::from([("a".to_string(), "x,y".to_string())]),
             files: vec![format!("{job}.png"), format!("{job}.json")],
-            stats: Some(RowStats {
+            stats: Some(Stats {
                 hs_m: 1.0,
                 min_m: -0.5,
                 max_m: 0.5,

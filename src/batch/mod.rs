@@ -28,7 +28,7 @@ use crate::export::options::{ExportArgs, ExportOptions};
 use crate::export::{Format, HeightMapping, Staged};
 use crate::field::Synthesis;
 use crate::jobs::{self, FileKind, Progress};
-use index::{Index, Row, RowStats, Status};
+use index::{Index, Row, Status};
 use plan::{JobSpec, Manifest, NameTemplate, Shard, Sweep};
 
 #[derive(Debug, Args)]
@@ -139,6 +139,21 @@ struct Job {
 }
 
 impl Job {
+    /// The job's index row: its number, name, swept values and `status`, nothing else.
+    fn row(&self, status: Status) -> Row {
+        Row {
+            job: self.index,
+            name: self.name.clone(),
+            status,
+            params: self.values.clone(),
+            files: Vec::new(),
+            stats: None,
+            seconds: None,
+            hash: None,
+            error: None,
+        }
+    }
+
     fn paths(&self, dir: &Path, suffixes: &[String]) -> Vec<PathBuf> {
         suffixes
             .iter()
@@ -288,11 +303,13 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     .find(|a| canonical_key(&a.key) == canonical_key(k))
                     .map(|a| a.value.clone())
             };
-            let value = |k: &str| match &params {
-                Ok(p) => plan::value_text(p, k)
+            // The parameters as a tree once, not once per key and name placeholder.
+            let tree = params.as_ref().ok().and_then(plan::params_tree);
+            let value = |k: &str| {
+                tree.as_ref()
+                    .and_then(|t| plan::value_text(t, k))
                     .or_else(|| typed(k))
-                    .unwrap_or_default(),
-                Err(_) => typed(k).unwrap_or_default(),
+                    .unwrap_or_default()
             };
             let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
             let name = template.render(index, total, value);
@@ -555,17 +572,13 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 ));
                 (
                     Row {
-                        job: i,
-                        name: job.name.clone(),
-                        status: Status::Ok,
-                        params: job.values.clone(),
                         files: complete_files(&job.name, &suffixes, &records[i].hash, &dir)
                             .map(|(f, _)| f)
                             .unwrap_or_default(),
-                        stats: Some(row_stats(&w.stats)),
+                        stats: Some(w.stats),
                         seconds: Some(seconds),
                         hash: Some(records[i].hash.clone()),
-                        error: None,
+                        ..job.row(Status::Ok)
                     },
                     true,
                 )
@@ -578,15 +591,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 progress.finished(&format!("{label}: FAILED"));
                 (
                     Row {
-                        job: i,
-                        name: job.name.clone(),
-                        status: Status::Failed,
-                        params: job.values.clone(),
-                        files: Vec::new(),
-                        stats: None,
                         seconds: Some(seconds),
-                        hash: None,
                         error: Some(message),
+                        ..job.row(Status::Failed)
                     },
                     usage,
                 )
@@ -646,16 +653,6 @@ pub fn run(args: BatchArgs) -> Result<()> {
     Ok(())
 }
 
-fn row_stats(s: &crate::grid::Stats) -> RowStats {
-    RowStats {
-        hs_m: s.hs_m,
-        min_m: s.min_m,
-        max_m: s.max_m,
-        mean_m: s.mean_m,
-        std_m: s.std_m,
-    }
-}
-
 /// The files of a complete job, relative to the folder, and its statistics, from its
 /// sidecar `DIR/NAME.json`: the files the sidecar lists (the height outputs, or their
 /// tiles), the tile index, the maps and previews (`NAME.KIND.ext`, which the sidecar does
@@ -698,34 +695,28 @@ fn complete_files(
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
     Some(Row {
-        job: job.index,
-        name: job.name.clone(),
-        status: Status::Kept,
-        params: job.values.clone(),
         files,
-        stats: Some(row_stats(&stats)),
-        seconds: None,
+        stats: Some(stats),
         hash: Some(record.hash.clone()),
-        error: None,
+        ..job.row(Status::Kept)
     })
+}
+
+/// The entries of folder `dir` whose name is UTF-8 and satisfies `wanted`.
+fn files_named(dir: &Path, wanted: impl Fn(&str) -> bool) -> std::io::Result<Vec<PathBuf>> {
+    Ok(std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(&wanted))
+        .collect())
 }
 
 /// Removes the temporary files a killed run left for these jobs (`.NAME.….part`, the
 /// staging names of `export::Staged`). Only this run's jobs: shards sharing the folder
 /// keep theirs.
 fn remove_stale_temporaries<'a>(dir: &Path, names: impl Iterator<Item = &'a str>) -> Result<()> {
-    let stale: Vec<PathBuf> = match std::fs::read_dir(dir) {
-        Ok(entries) => entries
-            .filter_map(|e| e.ok())
-            .map(|e| e.path())
-            .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with('.') && n.ends_with(".part"))
-            })
-            .collect(),
-        Err(e) => return Err(Error::io(dir, e).into()),
-    };
+    let stale = files_named(dir, |n| n.starts_with('.') && n.ends_with(".part"))
+        .map_err(|e| Error::io(dir, e))?;
     if stale.is_empty() {
         return Ok(());
     }

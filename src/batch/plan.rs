@@ -179,11 +179,15 @@ pub fn check_key(key: &str, sample_value: &str, origin: &str) -> Result<()> {
     }
 }
 
-/// A job's value of `key` (a flag name or preset key), as text for names and the index:
-/// numbers in their shortest form (`45`, `0.25`), sizes as `NxM`.
-pub fn value_text(params: &Params, key: &str) -> Option<String> {
-    let table = toml::Table::try_from(params).ok()?;
-    let mut cur = &Value::Table(table);
+/// A job's parameters as a TOML tree, made once per job for every [`value_text`].
+pub fn params_tree(params: &Params) -> Option<Value> {
+    toml::Table::try_from(params).ok().map(Value::Table)
+}
+
+/// A job's value of `key` (a flag name or preset key) in its [`params_tree`], as text for
+/// names and the index: numbers in their shortest form (`45`, `0.25`), sizes as `NxM`.
+pub fn value_text(tree: &Value, key: &str) -> Option<String> {
+    let mut cur = tree;
     for part in canonical_key(key).split('.') {
         cur = cur.as_table()?.get(part)?;
     }
@@ -600,7 +604,8 @@ mod tests {
         assert!(e.contains("wind.sped"), "{e}");
         let t = NameTemplate::parse("s{size}").unwrap();
         let p = layers::resolve(None, &[Assignment::flag("size", "64x32")]).unwrap();
-        assert_eq!(t.render(0, 1, |k| value_text(&p, k).unwrap()), "s64x32");
+        let tree = params_tree(&p).unwrap();
+        assert_eq!(t.render(0, 1, |k| value_text(&tree, k).unwrap()), "s64x32");
     }
 
     #[test]
