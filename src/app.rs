@@ -170,24 +170,14 @@ pub fn write_field(
     computed: Option<field::Synthesis>,
     force: bool,
 ) -> Result<Written> {
-    let params = params.clone();
-    let paths = paths.to_vec();
     let spec = params.grid_spec();
     let periodic = params.is_periodic();
-    for (i, p) in paths.iter().enumerate() {
-        if paths[..i].contains(p) {
-            return Err(Error::Output {
-                path: p.clone(),
-                message: "given twice".into(),
-            }
-            .into());
-        }
-    }
+    refuse_repeated(paths)?;
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.
     let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
     let mut height_paths = Vec::new();
-    for p in &paths {
+    for p in paths {
         if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
             staged_maps.push((Staged::create(p)?, None));
             continue;
@@ -417,7 +407,21 @@ pub fn write_field(
     })
 }
 
-fn file_name(p: &Path) -> String {
+/// Refuses an output path given twice.
+pub(crate) fn refuse_repeated(paths: &[PathBuf]) -> Result<(), Error> {
+    for (i, p) in paths.iter().enumerate() {
+        if paths[..i].contains(p) {
+            return Err(Error::Output {
+                path: p.clone(),
+                message: "given twice".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The file name of `p`, or empty.
+pub(crate) fn file_name(p: &Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
