@@ -389,15 +389,9 @@ pub fn write_field(
     }
     for (staged, doc, index) in docs {
         if let Some((staged, index)) = index {
-            staged.write_with(|w| {
-                serde_json::to_writer_pretty(&mut *w, &index)?;
-                std::io::Write::write_all(w, b"\n")
-            })?;
+            staged.write_json(&index)?;
         }
-        staged.write_with(|w| {
-            serde_json::to_writer_pretty(&mut *w, &doc)?;
-            std::io::Write::write_all(w, b"\n")
-        })?;
+        staged.write_json(&doc)?;
     }
     Ok(Written {
         stats,

@@ -279,10 +279,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
                 }
             }
         }
-        staged.write_with(|w| {
-            serde_json::to_writer_pretty(&mut *w, &doc)?;
-            std::io::Write::write_all(w, b"\n")
-        })?;
+        staged.write_json(&doc)?;
     }
     Ok(crate::app::Written {
         stats,
