@@ -170,24 +170,14 @@ pub fn write_field(
     computed: Option<field::Synthesis>,
     force: bool,
 ) -> Result<Written> {
-    let params = params.clone();
-    let paths = paths.to_vec();
     let spec = params.grid_spec();
     let periodic = params.is_periodic();
-    for (i, p) in paths.iter().enumerate() {
-        if paths[..i].contains(p) {
-            return Err(Error::Output {
-                path: p.clone(),
-                message: "given twice".into(),
-            }
-            .into());
-        }
-    }
+    refuse_repeated(paths)?;
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.
     let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
     let mut height_paths = Vec::new();
-    for p in &paths {
+    for p in paths {
         if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
             staged_maps.push((Staged::create(p)?, None));
             continue;
@@ -259,12 +249,12 @@ pub fn write_field(
     let kinds: Vec<MapKind> = staged_maps.iter().filter_map(|(_, k)| *k).collect();
     let mut extras = maps::extras_for(&kinds);
     // Meshes take exact spectral slopes where the field is one spectrum and not resampled.
-    let exact_slopes = crate::render::command::exact_slopes_apply(&params);
+    let exact_slopes = crate::render::command::exact_slopes_apply(params);
     let meshes = outputs.iter().any(|o| o.format.is_mesh());
     extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
     let [nx, ny] = params.grid.size.0;
     crate::guard::check_memory(
-        crate::guard::Footprint::of_field(&params, extras)
+        crate::guard::Footprint::of_field(params, extras)
             .with_outputs(staged_maps.len() as u64 + meshes as u64)
             .bytes(spec.len() as u64, 1),
         &format!("a {nx}x{ny} {} field", params.method.name()),
@@ -272,7 +262,7 @@ pub fn write_field(
     )?;
     let synthesis = match computed.filter(|_| !extras.any()) {
         Some(s) => s,
-        None => field::Synthesizer::new(&params, extras, false)?.frame(params.time_s),
+        None => field::Synthesizer::new(params, extras, false)?.frame(params.time_s),
     };
     let mesh_slopes = synthesis
         .surface
@@ -307,7 +297,7 @@ pub fn write_field(
     // outputs are written (and consumed), saved after them.
     let mut docs = Vec::new();
     for (staged, index, outs) in staged_stems {
-        let mut doc = Sidecar::new(&params, &synthesis.info, stats);
+        let mut doc = Sidecar::new(params, &synthesis.info, stats);
         doc.batch = notes.batch;
         let mut uses_mapping = false;
         let mut sets = Vec::new();
@@ -362,7 +352,7 @@ pub fn write_field(
         params.wind.direction_deg,
         params.seed,
         params.time_s,
-        serde_json::to_string(&params).context("cannot describe the parameters")?
+        serde_json::to_string(params).context("cannot describe the parameters")?
     );
     let field_out = FieldOut {
         grid,
@@ -386,28 +376,22 @@ pub fn write_field(
         match kind {
             Some(kind) => {
                 let cx = MapContext {
-                    params: &params,
+                    params,
                     synthesis: &synthesis,
                 };
                 maps::write_map(kind, staged, &cx)?;
             }
             None => {
-                let img = crate::render::command::preview_of(&params, &synthesis)?;
+                let img = crate::render::command::preview_of(params, &synthesis)?;
                 export::rgb8::write(staged, &img.rgb, (img.width, img.height))?;
             }
         }
     }
     for (staged, doc, index) in docs {
         if let Some((staged, index)) = index {
-            staged.write_with(|w| {
-                serde_json::to_writer_pretty(&mut *w, &index)?;
-                std::io::Write::write_all(w, b"\n")
-            })?;
+            staged.write_json(&index)?;
         }
-        staged.write_with(|w| {
-            serde_json::to_writer_pretty(&mut *w, &doc)?;
-            std::io::Write::write_all(w, b"\n")
-        })?;
+        staged.write_json(&doc)?;
     }
     Ok(Written {
         stats,
@@ -417,7 +401,21 @@ pub fn write_field(
     })
 }
 
-fn file_name(p: &Path) -> String {
+/// Refuses an output path given twice.
+pub(crate) fn refuse_repeated(paths: &[PathBuf]) -> Result<(), Error> {
+    for (i, p) in paths.iter().enumerate() {
+        if paths[..i].contains(p) {
+            return Err(Error::Output {
+                path: p.clone(),
+                message: "given twice".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The file name of `p`, or empty.
+pub(crate) fn file_name(p: &Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()

@@ -11,7 +11,7 @@
 //! them. So a PNG alone costs two passes, or one with `--height-range`.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use rayon::prelude::*;
@@ -154,6 +154,7 @@ pub fn fill_rows(
 /// `generate` for streamed outputs (see the module docs).
 pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate::app::Written> {
     let spec = params.grid_spec();
+    crate::app::refuse_repeated(paths)?;
     // Stage every file (and one sidecar per stem) before any work.
     let mut outputs = Vec::new();
     for p in paths {
@@ -262,7 +263,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         for p in paths.iter().filter(|p| &sidecar::path_for(p) == side) {
             let format = Format::from_path(p)?;
             doc.files.push(FileEntry {
-                file: file_name(p),
+                file: crate::app::file_name(p),
                 format,
             });
             match format {
@@ -278,10 +279,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
                 }
             }
         }
-        staged.write_with(|w| {
-            serde_json::to_writer_pretty(&mut *w, &doc)?;
-            std::io::Write::write_all(w, b"\n")
-        })?;
+        staged.write_json(&doc)?;
     }
     Ok(crate::app::Written {
         stats,
@@ -292,10 +290,4 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         has_png: mapping.is_some(),
         files: paths.to_vec(),
     })
-}
-
-fn file_name(p: &Path) -> String {
-    p.file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default()
 }

@@ -6,8 +6,8 @@ mod common;
 use common::*;
 use seasynth::export::tiff32;
 
+/// The sea of these tests.
 const SEA: &[&str] = &[
-    "generate",
     "--method",
     "trochoid",
     "--spectrum",
@@ -17,8 +17,16 @@ const SEA: &[&str] = &[
     "--quiet",
 ];
 
+/// `seasynth COMMAND` on [`SEA`] with `extra` arguments.
+fn command<'a>(name: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    std::iter::once(name)
+        .chain(SEA.iter().copied())
+        .chain(extra.iter().copied())
+        .collect()
+}
+
 fn with<'a>(extra: &[&'a str]) -> Vec<&'a str> {
-    SEA.iter().copied().chain(extra.iter().copied()).collect()
+    command("generate", extra)
 }
 
 /// The pixels of two 16-bit PNGs of one size that differ, read row by row (any size).
@@ -168,28 +176,13 @@ fn animation_frames_equal_generate_at_their_time() {
     let d = dir.path();
     run_ok(
         d,
-        &[
+        &command(
             "animate",
-            "--method",
-            "trochoid",
-            "--spectrum",
-            "pierson-moskowitz",
-            "--wind-speed",
-            "10",
-            "--size",
-            "128",
-            "--extent",
-            "256",
-            "--frames",
-            "3",
-            "--fps",
-            "2",
-            "--format",
-            "tif",
-            "-o",
-            "seq",
-            "--quiet",
-        ],
+            &[
+                "--size", "128", "--extent", "256", "--frames", "3", "--fps", "2", "--format",
+                "tif", "-o", "seq",
+            ],
+        ),
     );
     run_ok(
         d,
@@ -240,6 +233,12 @@ fn bad_trochoid_input_is_a_one_line_error_and_writes_nothing() {
         d,
         &with(&["--choppiness", "0.5", "-o", "x.png"]),
         &["--choppiness"],
+    );
+    // A streamed output given twice, as in memory.
+    run_rejected(
+        d,
+        &with(&["--size", "64", "-o", "x.png", "-o", "x.png"]),
+        &["x.png", "given twice"],
     );
     // Larger than memory, but to an output that is not streamed.
     run_rejected(

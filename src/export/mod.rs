@@ -221,6 +221,16 @@ impl Staged {
     }
 }
 
+impl Staged {
+    /// Writes `value` as pretty-printed JSON with a final newline (sidecars, indexes).
+    pub fn write_json(self, value: &impl Serialize) -> Result<()> {
+        self.write_with(|w| {
+            serde_json::to_writer_pretty(&mut *w, value)?;
+            w.write_all(b"\n")
+        })
+    }
+}
+
 impl Drop for Staged {
     fn drop(&mut self) {
         let mut live = live::lock();

@@ -251,16 +251,12 @@ multiversion! {
 mod tests {
     use super::*;
 
-    fn isas() -> Vec<Isa> {
-        Isa::available()
-    }
-
     #[test]
     fn rows_equal_points_bit_for_bit_on_every_instruction_set() {
         let xs: Vec<f64> = (0..777).map(|i| -13.7 + i as f64 * 0.173).collect();
         for (scale, offset) in [(0.05, 0.3), (0.9, -2.1), (7.5, 0.25)] {
             let ctx = row_context(42, 3.3, -1.7, 0);
-            for isa in isas() {
+            for isa in Isa::available() {
                 let mut out = vec![0.0f32; xs.len()];
                 let mut s = Scratch::default();
                 let first = floor_f64(xs[0] * scale + offset);

@@ -689,12 +689,19 @@ mod tests {
     }
 
     #[test]
-    fn sizes_and_grids_check_out() {
+    fn the_synthesized_field_is_the_sea_sampled_on_the_grid() {
         let mut p = pm_params(10.0);
-        p.grid.size = Size2([64, 64]);
-        p.grid.extent_m = Extent2([64.0, 64.0]);
+        p.grid.size = Size2([64, 48]);
+        p.grid.extent_m = Extent2([64.0, 96.0]);
+        p.time_s = 1.5;
         let s = crate::field::synthesize(&p).unwrap();
-        assert!(s.info.trochoid.is_some());
+        let sea = TrochoidSea::new(&p).unwrap();
+        assert_eq!(s.info.trochoid.as_ref(), Some(sea.info()));
         assert!(s.grid.stats().std_m > 0.0);
+        let want = sea.grid(&p.grid_spec(), p.time_s);
+        assert_eq!(s.grid.spec, want.spec);
+        for (i, (a, b)) in s.grid.data.iter().zip(&want.data).enumerate() {
+            assert_eq!(a.to_bits(), b.to_bits(), "sample {i}");
+        }
     }
 }
