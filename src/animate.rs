@@ -220,10 +220,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         mapping_source: source,
         params: params.clone(),
     };
-    Staged::create(&side_path)?.write_with(|w| {
-        serde_json::to_writer_pretty(&mut *w, &doc)?;
-        std::io::Write::write_all(w, b"\n")
-    })?;
+    Staged::create(&side_path)?.write_json(&doc)?;
     let todo: Vec<usize> = (0..args.frames)
         .filter(|&k| {
             !args.resume

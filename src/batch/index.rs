@@ -123,10 +123,7 @@ impl Index {
 
     /// Writes `STEM.json` and `STEM.csv` in `dir` (staged, renamed when complete).
     pub fn write(&self, dir: &Path, stem: &str) -> Result<()> {
-        Staged::create(&dir.join(format!("{stem}.json")))?.write_with(|w| {
-            serde_json::to_writer_pretty(&mut *w, self)?;
-            std::io::Write::write_all(w, b"\n")
-        })?;
+        Staged::create(&dir.join(format!("{stem}.json")))?.write_json(self)?;
         let csv = self.csv();
         Staged::create(&dir.join(format!("{stem}.csv")))?
             .write_with(|w| std::io::Write::write_all(w, csv.as_bytes()))

@@ -471,10 +471,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
             None => "no 16-bit heights written".into(),
         },
     };
-    Staged::create(&doc_path)?.write_with(|w| {
-        serde_json::to_writer_pretty(&mut *w, &doc)?;
-        std::io::Write::write_all(w, b"\n")
-    })?;
+    Staged::create(&doc_path)?.write_json(&doc)?;
 
     let export_key = format!("{options:?}");
     let records: Vec<JobRecord> = all
