@@ -481,53 +481,89 @@ fn reduce_payne_hanek(x: f64) -> (f64, u64) {
 // x^s in single precision
 // ---------------------------------------------------------------------------------------
 
-/// `log2` of the smallest power [`pow_unit_f32`] returns: below `2^POW_F32_LOG2_MIN`
-/// (about 4.7e-38, so every result is a normal `f32`) it returns 0.
-pub(crate) const POW_F32_LOG2_MIN: f32 = -124.0;
-
 /// `1.5·2^23`: adding and subtracting it rounds an `f32` with `|v| < 2^22` to the nearest
 /// integer, which sits in the low mantissa bits of the sum.
 const ROUND_MAGIC_F32: f32 = 12_582_912.0;
 
-/// `x^s` for `x ∈ [f32::MIN_POSITIVE, 1]` and `s ≥ 0` finite, in single precision:
-/// `2^t`, `t = s·log2 x`, or 0 where `t < POW_F32_LOG2_MIN`. Straight-line code (one
-/// division) that the compiler vectorizes eight or sixteen lanes wide.
+/// log2 x for a positive, normal, finite `f32` (meaningless, but harmless, for other `x`):
+/// straight-line code (one division) that the compiler vectorizes.
 ///
-/// `log2 x = e + ln(m)·log2 e` with `x = 2^e·m`, `m ∈ [√½, √2)` from the bits, and
-/// `ln m = 2·atanh(u)`, `u = (m − 1)/(m + 1)`, `|u| ≤ 0.172`, by its series to `u⁹`
-/// (truncation below 3e-9 relative); `2^t = 2^n·2^r`, `n = round(t)`, `|r| ≤ ½`, with
-/// `2^r` by its Taylor series to degree 7 (below 5e-9 relative). The result is within
-/// about `(1 + |t|)·1e-7` relative of `x^s` (the tests check it against `f64::powf`); `t`
-/// itself carries the rounding of `x` and `s` to single precision.
+/// `x = 2^e·m`, `m ∈ [√½, √2)` from the bits; `log2 m = u·Q(u²)`, `u = (m − 1)/(m + 1)`,
+/// `|u| ≤ 0.172`, with `Q` of degree 3 fitted to `2·atanh(u)/(u ln 2)` (error below 4e-10).
+/// The result is within 1e-7·(1 + |log2 x|) (tested), the rounding of single precision.
 #[inline(always)]
-pub(crate) fn pow_unit_f32(x: f32, s: f32) -> f32 {
+pub(crate) fn log2_f32(x: f32) -> f32 {
+    log2_parts(x, None)
+}
+
+/// log2 b for `b ∈ [f32::MIN_POSITIVE, 1]` given also `d ≈ 1 − b` (both rounded from a
+/// more precise value): for b ≥ √½ it takes `m − 1 = −d`, so that log2 b keeps the
+/// relative precision of d near b = 1, where the rounding of b itself would cost up to
+/// 9e-8 absolute (which a power b^s multiplies by s). Else as [`log2_f32`].
+#[inline(always)]
+pub(crate) fn log2_unit_f32(b: f32, d: f32) -> f32 {
+    log2_parts(b, Some(d))
+}
+
+/// [`log2_f32`], with `1 − x` given for `x ∈ [√½, √2)` (see [`log2_unit_f32`]).
+#[inline(always)]
+#[allow(clippy::excessive_precision)]
+fn log2_parts(x: f32, one_minus: Option<f32>) -> f32 {
     const SQRT_HALF_BITS: i32 = 0x3f35_04f3;
     const ONE_BITS: i32 = 0x3f80_0000;
-    const LOG2_E: f32 = std::f32::consts::LOG2_E;
-    const LN_2: f32 = std::f32::consts::LN_2;
+    const Q: [f32; 4] = [2.885_39, 0.961_798_85, 0.576_714_5, 0.431_733];
     // x = 2^e·m: shifting the bits by bits(1) − bits(√½) moves the exponent boundary to √½.
     let shifted = (x.to_bits() as i32).wrapping_add(ONE_BITS - SQRT_HALF_BITS);
-    let e = ((shifted >> 23) - 127) as f32;
+    let ei = (shifted >> 23) - 127;
+    let e = ei as f32;
     let m = f32::from_bits(((shifted & 0x007f_ffff) + SQRT_HALF_BITS) as u32);
-    let u = (m - 1.0) / (m + 1.0);
+    let (num, den) = match one_minus {
+        Some(d) if ei == 0 => (-d, 2.0 - d),
+        _ => (m - 1.0, m + 1.0),
+    };
+    let u = num / den;
     let z = u * u;
-    let series = 1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0))));
-    let log2_x = e + (2.0 * u * series) * LOG2_E;
-    let t = s * log2_x;
-    // 2^t for t ≥ POW_F32_LOG2_MIN (the clamp keeps the exponent bits in range elsewhere).
-    let tc = t.max(POW_F32_LOG2_MIN);
-    let rounded = tc + ROUND_MAGIC_F32;
+    e + u * (Q[0] + z * (Q[1] + z * (Q[2] + z * Q[3])))
+}
+
+/// 2^t as `(p, n)`, `2^t = p·2^n`: `n = round(t)`, `p = 2^(t − n) ∈ [2^−½, 2^½]` by a
+/// polynomial of degree 6 fitted on [−½, ½] (error below 3e-9), for `|t| < 2^22`;
+/// straight-line code. `t − n` is exact, so p is within ~1e-7 relative of 2^(t − n).
+#[inline(always)]
+#[allow(clippy::excessive_precision, clippy::approx_constant)]
+pub(crate) fn exp2_parts_f32(t: f32) -> (f32, i32) {
+    const P: [f32; 7] = [
+        1.0,
+        0.693_147_2,
+        0.240_226_51,
+        0.055_503_272,
+        0.009_618_026,
+        0.001_340_043_2,
+        0.000_154_697_32,
+    ];
+    let rounded = t + ROUND_MAGIC_F32;
     let n = rounded - ROUND_MAGIC_F32;
-    let r = (tc - n) * LN_2;
-    let p = 1.0
-        + r * (1.0
-            + r * (1.0 / 2.0
-                + r * (1.0 / 6.0
-                    + r * (1.0 / 24.0
-                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    let r = t - n;
+    let p = P[0] + r * (P[1] + r * (P[2] + r * (P[3] + r * (P[4] + r * (P[5] + r * P[6])))));
     let ni = (rounded.to_bits() as i32).wrapping_sub(ROUND_MAGIC_F32.to_bits() as i32);
-    let scale = f32::from_bits(((ni + 127) << 23) as u32);
-    if t < POW_F32_LOG2_MIN { 0.0 } else { p * scale }
+    (p, ni)
+}
+
+/// 2^t in single precision for `t ≥ −126` (normal results); 0 below. Relative error ~1e-7.
+#[inline(always)]
+pub(crate) fn exp2_f32(t: f32) -> f32 {
+    let (p, n) = exp2_parts_f32(t.max(-126.0));
+    let v = p * f32::from_bits(((n.clamp(-126, 127) + 127) << 23) as u32);
+    if t < -126.0 { 0.0 } else { v }
+}
+
+/// `p·2^e` as a double for `p ∈ [½, 2)`: exact for `e ∈ [−1022, 1023]` (a normal power of
+/// two); 0 below (results under ~2e-308) and +∞ above. Straight-line code.
+#[inline(always)]
+pub(crate) fn scale_f64(p: f32, e: i32) -> f64 {
+    // Exponent field 0 is the factor 0, 2047 is +∞.
+    let field = (e.clamp(-1023, 1024) + 1023) as u64;
+    f64::from(p) * f64::from_bits(field << 52)
 }
 
 #[cfg(test)]
@@ -619,45 +655,63 @@ mod tests {
     }
 
     #[test]
-    fn pow_unit_f32_matches_powf_within_its_bound() {
-        // |Δ/x^s| ≤ TOL·(1 + |t|), t = s·log2 x (the rounding of t carries through 2^t).
-        const TOL: f64 = 3e-7;
-        let mut worst: f64 = 0.0;
-        let mut checked = 0;
-        for i in 0..=4000 {
-            // x from f32::MIN_POSITIVE to 1, evenly in log2 x, plus neighbours of 1.
-            let x = if i < 4000 {
-                (-126.0f64 + 126.0 * i as f64 / 4000.0).exp2() as f32
+    fn single_precision_log2_and_exp2_are_within_their_bounds() {
+        // log2: |Δ| ≤ LOG2_TOL·(1 + |log2 x|); 2^t: |Δ|/2^t ≤ EXP2_TOL (t exact in f32).
+        const LOG2_TOL: f64 = 2e-7;
+        const EXP2_TOL: f64 = 2e-7;
+        let (mut worst_log, mut worst_exp) = (0.0f64, 0.0f64);
+        let mut rng = Rng(7);
+        for i in 0..200_000 {
+            // x over the whole normal range, evenly in log2 x, and neighbours of 1.
+            let x = if i % 10 == 0 {
+                f32::from_bits(1.0f32.to_bits() - 50 + (i / 10 % 100) as u32)
             } else {
-                1.0
+                rng.uniform(-126.0, 128.0).exp2() as f32
             };
-            for x in [
-                x,
-                f32::from_bits(x.to_bits().saturating_sub(1)).max(f32::MIN_POSITIVE),
-            ] {
-                for s in [0.0f32, 1e-3, 0.37, 1.0, 2.0, 9.77, 41.3, 400.0, 1e6] {
-                    let got = pow_unit_f32(x, s);
-                    let t = f64::from(s) * f64::from(x).log2();
-                    let want = f64::from(x).powf(f64::from(s));
-                    if t < f64::from(POW_F32_LOG2_MIN) - 1e-4 {
-                        assert_eq!(got, 0.0, "x = {x:e}, s = {s}: {got:e} below the floor");
-                        continue;
-                    }
-                    if t < f64::from(POW_F32_LOG2_MIN) + 1e-4 {
-                        continue;
-                    }
-                    let err = (f64::from(got) - want).abs() / want / (1.0 + t.abs());
-                    worst = worst.max(err);
-                    assert!(err < TOL, "x = {x:e}, s = {s}: {got:e}, want {want:e}");
-                    checked += 1;
-                }
+            if !(x.is_normal()) {
+                continue;
             }
+            let want = f64::from(x).log2();
+            let err = (f64::from(log2_f32(x)) - want).abs() / (1.0 + want.abs());
+            worst_log = worst_log.max(err);
+            assert!(
+                err < LOG2_TOL,
+                "log2_f32({x:e}) = {}, want {want}",
+                log2_f32(x)
+            );
+            let t = rng.uniform(-1000.0, 1000.0) as f32;
+            let (p, n) = exp2_parts_f32(t);
+            assert_eq!(n as f32, t.round_ties_even(), "n of 2^{t}");
+            let want = (f64::from(t) - f64::from(n)).exp2();
+            let err = (f64::from(p) - want).abs() / want;
+            worst_exp = worst_exp.max(err);
+            assert!(err < EXP2_TOL, "2^{t}: p = {p}, want {want}");
         }
-        assert!(checked > 20_000, "only {checked} points");
-        assert_eq!(pow_unit_f32(1.0, 1e6), 1.0);
-        assert_eq!(pow_unit_f32(0.25, 0.0), 1.0);
-        assert_eq!(pow_unit_f32(0.5, 3.0), 0.125);
-        eprintln!("pow_unit_f32: largest |Δ|/(x^s (1 + |t|)) {worst:.2e}");
+        eprintln!("log2_f32: largest |Δ|/(1 + |log2 x|) {worst_log:.2e}; 2^t: {worst_exp:.2e}");
+        assert_eq!(log2_f32(1.0), 0.0);
+        assert_eq!(log2_f32(0.5), -1.0);
+        assert_eq!(log2_f32(1024.0), 10.0);
+        assert_eq!(exp2_parts_f32(-3.0), (1.0, -3));
+        // exp2_f32: normal results, 0 below 2^−126.
+        assert_eq!(exp2_f32(3.0), 8.0);
+        assert_eq!(exp2_f32(-126.5), 0.0);
+        assert!(rel_err(f64::from(exp2_f32(-125.25)), (-125.25f64).exp2()) < EXP2_TOL);
+    }
+
+    #[test]
+    fn scale_f64_is_exact_in_range_and_saturates_outside() {
+        for (p, e) in [
+            (1.25f32, 0),
+            (0.75, -1022),
+            (1.4, 1023),
+            (0.9, -300),
+            (1.0, 77),
+        ] {
+            assert_eq!(scale_f64(p, e), f64::from(p) * 2f64.powi(e), "{p}·2^{e}");
+        }
+        assert_eq!(scale_f64(1.0, -1023), 0.0);
+        assert_eq!(scale_f64(1.0, -5000), 0.0);
+        assert_eq!(scale_f64(1.0, 1024), f64::INFINITY);
     }
 
     #[test]

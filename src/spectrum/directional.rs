@@ -60,8 +60,9 @@ use super::spreading::{
 };
 use super::{Dispersion, G, Spectrum};
 use crate::error::ParamError;
-use crate::fastmath::{exp, ln, pow_unit_f32, sin_cos};
+use crate::fastmath::{exp, ln, sin_cos};
 
+mod grid;
 mod line;
 
 const PI: f64 = std::f64::consts::PI;
@@ -346,6 +347,11 @@ struct Kernel {
     far_c2: f64,
     /// Gauss–Legendre rules of orders 1..=MAX_CELL_ORDER: (node in (−½, ½), weight), Σw = 1.
     rules: Vec<Vec<(f64, f64)>>,
+    /// log2 of the radial part at the peak wavenumber (0 if it is 0 there): the reference
+    /// of the grid's single-precision exponents (see `grid`).
+    grid_l0: f64,
+    /// The grid's single-precision radial lane, for the seas it covers.
+    fast: Option<grid::FastRadial>,
 }
 
 /// k of ω for the dispersion of depth `depth` (∞: deep), by Newton's method with the
@@ -503,27 +509,35 @@ impl DirectionalSpectrum {
         let zone_k = ZONE * kp;
         let far = MIDPOINT_RATIO * TAIL_SCALE.min(sigma_theta);
         let (sd, cd) = sin_cos(wind_dir_rad);
+        let mut kern = Kernel {
+            wx: cd,
+            wy: sd,
+            depth,
+            shape,
+            ln_w_peak,
+            kind,
+            table,
+            zone_k,
+            zone2: zone_k * zone_k,
+            ell_peak: PEAK_SCALE * c_over_cg * kp,
+            sigma_theta,
+            far_c2: far * far,
+            rules,
+            grid_l0: 0.0,
+            fast: None,
+        };
+        let a_peak = kern.radial(kp * kp, freq.as_ref()).a;
+        if a_peak > 0.0 && a_peak.is_finite() {
+            kern.grid_l0 = ln(a_peak) * std::f64::consts::LOG2_E;
+        }
+        kern.fast = grid::FastRadial::new(&kern, kern.grid_l0);
         Ok(Self {
             freq,
             spreading,
             wind_dir_rad,
             u10_mps,
             dispersion,
-            kern: Kernel {
-                wx: cd,
-                wy: sd,
-                depth,
-                shape,
-                ln_w_peak,
-                kind,
-                table,
-                zone_k,
-                zone2: zone_k * zone_k,
-                ell_peak: PEAK_SCALE * c_over_cg * kp,
-                sigma_theta,
-                far_c2: far * far,
-                rules,
-            },
+            kern,
         })
     }
 
@@ -558,21 +572,39 @@ impl DirectionalSpectrum {
     }
 
     /// ∫ Ψ over the cell of size `dkx` × `dky` centred on (kx, ky), m² (see the module
-    /// docs for the rule).
+    /// docs for the rule): twice the amplitude variance.
     #[inline]
     pub fn cell_integral(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> f64 {
+        match self.gauss_orders(kx, ky, dkx, dky) {
+            None => {
+                2.0 * self
+                    .kern
+                    .grid_variance(kx, ky, dkx, dky, self.freq.as_ref())
+            }
+            Some((nx, ny)) => self.gauss_cell(kx, ky, dkx, dky, nx, ny),
+        }
+    }
+
+    /// The orders of the cell's Gauss–Legendre rule, or `None` for a midpoint cell.
+    #[inline(always)]
+    fn gauss_orders(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> Option<(usize, usize)> {
         let kern = &self.kern;
         let k2 = kx * kx + ky * ky;
-        let h = dkx.max(dky);
-        if kern.is_far(k2, h) {
-            return kern.psi_grid(kx, ky, self.freq.as_ref()) * dkx * dky;
+        if kern.is_far(k2, dkx.max(dky)) {
+            return None;
         }
         let k = k2.sqrt();
-        let nx = kern.order(k, dkx);
-        let ny = kern.order(k, dky);
+        let (nx, ny) = (kern.order(k, dkx), kern.order(k, dky));
         if nx == 1 && ny == 1 {
-            return kern.psi_grid(kx, ky, self.freq.as_ref()) * dkx * dky;
+            None
+        } else {
+            Some((nx, ny))
         }
+    }
+
+    /// ∫ Ψ over the cell by the nx × ny Gauss–Legendre rule (double precision).
+    fn gauss_cell(&self, kx: f64, ky: f64, dkx: f64, dky: f64, nx: usize, ny: usize) -> f64 {
+        let kern = &self.kern;
         let mut sum = 0.0;
         for &(ox, wx) in &kern.rules[nx - 1] {
             let x = kx + ox * dkx;
@@ -724,29 +756,10 @@ impl Kernel {
         }
     }
 
-    /// [`Kernel::angular`] as the grid's midpoint cells take it: the power cos^{2s}(θ/2)
-    /// in single precision ([`fastmath::pow_unit_f32`], relative error ~1e-7·(1 + |ln|),
-    /// below the amplitudes' own single precision in effect, and 0 below 2^−124 of the
-    /// cell's radial value), which the line passes compute 8 or 16 lanes at a time.
-    #[inline(always)]
-    fn angular_grid(&self, r: &Radial, kx: f64, ky: f64) -> f64 {
-        match self.before_power(r, kx, ky) {
-            Ok((m, c)) => m * f64::from(pow_unit_f32(half_one_plus_f32(c), power_f32(r.s))),
-            Err(psi) => psi,
-        }
-    }
-
     #[inline(always)]
     fn psi(&self, kx: f64, ky: f64, freq: &dyn FrequencySpectrum) -> f64 {
         let r = self.radial(kx * kx + ky * ky, freq);
         self.angular(&r, kx, ky)
-    }
-
-    /// Ψ at a midpoint cell of the grid (see [`Kernel::angular_grid`]).
-    #[inline(always)]
-    fn psi_grid(&self, kx: f64, ky: f64, freq: &dyn FrequencySpectrum) -> f64 {
-        let r = self.radial(kx * kx + ky * ky, freq);
-        self.angular_grid(&r, kx, ky)
     }
 
     /// True when the cell at k² takes the midpoint without further tests (see
@@ -792,7 +805,12 @@ fn power_f32(s: f64) -> f32 {
 impl Spectrum for DirectionalSpectrum {
     /// P(k) = ½ ∫_cell Ψ dkx dky.
     fn amplitude_variance(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> f64 {
-        0.5 * self.cell_integral(kx, ky, dkx, dky)
+        match self.gauss_orders(kx, ky, dkx, dky) {
+            None => self
+                .kern
+                .grid_variance(kx, ky, dkx, dky, self.freq.as_ref()),
+            Some((nx, ny)) => 0.5 * self.gauss_cell(kx, ky, dkx, dky, nx, ny),
+        }
     }
 
     fn amplitude_variance_line(&self, kx: f64, ky: &[f64], dkx: f64, dky: f64, out: &mut [f64]) {
@@ -815,7 +833,11 @@ impl Spectrum for DirectionalSpectrum {
         let n = ky.len().min(pa.len()).min(pb.len());
         let (ky, pa, pb) = (&ky[..n], &mut pa[..n], &mut pb[..n]);
         LINE_SCRATCH.with(|cell| match cell.try_borrow_mut() {
-            Ok(mut scratch) => self.kern.midpoint_pair_line(
+            Ok(mut scratch) => {
+                self.kern
+                    .grid_pair_line(self.freq.as_ref(), kx, ky, dkx, dky, pa, pb, &mut scratch)
+            }
+            Err(_) => self.kern.grid_pair_line(
                 self.freq.as_ref(),
                 kx,
                 ky,
@@ -823,17 +845,7 @@ impl Spectrum for DirectionalSpectrum {
                 dky,
                 pa,
                 pb,
-                &mut scratch,
-            ),
-            Err(_) => self.kern.midpoint_pair_line(
-                self.freq.as_ref(),
-                kx,
-                ky,
-                dkx,
-                dky,
-                pa,
-                pb,
-                &mut line::LineScratch::default(),
+                &mut grid::GridScratch::default(),
             ),
         });
         let h = dkx.max(dky);
@@ -843,8 +855,8 @@ impl Spectrum for DirectionalSpectrum {
         }
         for j in 0..n {
             if !self.kern.is_far(kx * kx + ky[j] * ky[j], h) {
-                pa[j] = 0.5 * self.cell_integral(kx, ky[j], dkx, dky);
-                pb[j] = 0.5 * self.cell_integral(-kx, -ky[j], dkx, dky);
+                pa[j] = self.amplitude_variance(kx, ky[j], dkx, dky);
+                pb[j] = self.amplitude_variance(-kx, -ky[j], dkx, dky);
             }
         }
     }
@@ -852,8 +864,8 @@ impl Spectrum for DirectionalSpectrum {
 
 thread_local! {
     /// Buffers of the line passes, one set per thread.
-    static LINE_SCRATCH: std::cell::RefCell<line::LineScratch> =
-        std::cell::RefCell::new(line::LineScratch::default());
+    static LINE_SCRATCH: std::cell::RefCell<grid::GridScratch> =
+        std::cell::RefCell::new(grid::GridScratch::default());
 }
 
 /// atan2(y, x) for y ≥ 0, in [0, π]: fdlibm's atan (basic operations only, so the same
@@ -1336,6 +1348,110 @@ mod tests {
             }
             assert_eq!(s.psi(0.0, 0.0), 0.0);
             assert_eq!(s.amplitude_variance(0.0, 0.0, 0.0, 0.0), 0.0);
+        }
+    }
+
+    /// Every sea of `seas()` with every spreading, with and without swell.
+    fn all_seas() -> Vec<(String, DirectionalSpectrum)> {
+        let mut all = Vec::new();
+        for (name, make, disp) in seas() {
+            for model in MODELS {
+                for swell in [0.0, 1.5] {
+                    let s = sea(&make, model, swell, 0.7, disp);
+                    all.push((format!("{name} {model:?} swell {swell}"), s));
+                }
+            }
+        }
+        all
+    }
+
+    #[test]
+    fn grid_values_match_the_double_precision_spectrum() {
+        // |P/P_ref − 1| ≤ TOL·(1 + |log2(P_ref/P_peak)|) for every cell above 2^−250 of the
+        // peak: the single-precision exponent's rounding grows with its magnitude.
+        const TOL: f64 = 1e-6;
+        const CUT_LOG2: f64 = -250.0;
+        let mut fast = 0;
+        for (name, s) in all_seas() {
+            fast += s.kern.fast.is_some() as usize;
+            // The peak on ~12 cells, and the far tail (k up to 50 kp).
+            for span in [12.0, 1.0] {
+                let n = 96;
+                let dk = s.peak_wavenumber() / span;
+                let (mut worst, mut peak) = (0.0f64, 0.0f64);
+                let mut cells = Vec::new();
+                for i in 0..n {
+                    for j in 0..n {
+                        let (kx, ky) = (
+                            signed_index(i, n) as f64 * dk,
+                            signed_index(j, n) as f64 * 1.3 * dk,
+                        );
+                        let want = 0.5 * s.psi(kx, ky) * dk * (1.3 * dk);
+                        let got = s.kern.grid_variance(kx, ky, dk, 1.3 * dk, s.freq());
+                        peak = peak.max(want);
+                        cells.push((got, want, kx, ky));
+                    }
+                }
+                for (got, want, kx, ky) in cells {
+                    let level = (want / peak).log2();
+                    if level < CUT_LOG2 {
+                        assert!(
+                            got <= peak * (CUT_LOG2 + 10.0).exp2(),
+                            "{name} at ({kx}, {ky}): {got:e} where Ψ gives {want:e}"
+                        );
+                        continue;
+                    }
+                    let err = (got / want - 1.0).abs() / (1.0 + level.abs());
+                    worst = worst.max(err);
+                    assert!(
+                        err < TOL,
+                        "{name} at ({kx}, {ky}): {got:e} vs {want:e} (2^{level:.1} of the peak)"
+                    );
+                }
+                eprintln!("{name}, peak on {span} cells: worst {worst:.2e}");
+            }
+        }
+        assert!(fast >= 8, "only {fast} seas took the fast radial lane");
+    }
+
+    #[test]
+    fn grid_lines_equal_single_values_on_every_instruction_set() {
+        for (name, s) in all_seas() {
+            let dk = s.peak_wavenumber() / 7.0;
+            for n in [64usize, 63, 10] {
+                // FFT order (mirrored) and a plain ascending line.
+                let fft: Vec<f64> = (0..n).map(|j| signed_index(j, n) as f64 * dk).collect();
+                let plain: Vec<f64> = (0..n).map(|j| (j as f64 - 20.0) * 0.9 * dk).collect();
+                for ky in [&fft, &plain] {
+                    for kx in [0.0, 3.0 * dk, -11.0 * dk, 40.0 * dk] {
+                        for isa in crate::field::lines::Isa::available() {
+                            let (mut pa, mut pb) = (vec![0.0; n], vec![0.0; n]);
+                            let mut scratch = grid::GridScratch::default();
+                            s.kern.grid_pair_line_on(
+                                isa,
+                                s.freq(),
+                                kx,
+                                ky,
+                                dk,
+                                1.3 * dk,
+                                &mut pa,
+                                &mut pb,
+                                &mut scratch,
+                            );
+                            for j in 0..n {
+                                for (got, x, y) in [(pa[j], kx, ky[j]), (pb[j], -kx, -ky[j])] {
+                                    let want = s.kern.grid_variance(x, y, dk, 1.3 * dk, s.freq());
+                                    assert_eq!(
+                                        got.to_bits(),
+                                        want.to_bits(),
+                                        "{name} {isa:?} at ({x}, {y}): line {got:e}, single {want:e}"
+                                    );
+                                }
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -1,22 +1,15 @@
-//! Midpoint values of a whole line of wavevectors, in passes the compiler vectorizes.
-//!
-//! A 4096² spectrum has 16.7 million amplitude variances, nearly all of them far from the
-//! peak, where the cell rule is the midpoint: Ψ = a(|k|) · m(θ) · cos^{2s}(θ/2). The passes
-//! below compute the same operations as [`Kernel::radial`] and [`Kernel::angular`], in the
-//! same order, on arrays: the radial part once per distinct k² (k and −k share it, and
-//! so do ky and −ky of a line in FFT order), then both half-planes' directional parts.
-//! The directional powers cos^{2s}(θ/2) of both half-planes come last, in single
-//! precision (`Kernel::angular_grid`) in a pass of their own, so that it runs on twice as
-//! many lanes as the double-precision passes around it. Each pass is compiled for the
-//! baseline, AVX2 and AVX-512 (`lines::multiversion`), uses `fastmath`'s branch-free
-//! cores, and flags lanes outside their fast range, which the scalar functions then redo;
-//! so every value equals the scalar one bit for bit.
+//! The double-precision radial part of Ψ for a whole line of wavevectors, in passes the
+//! compiler vectorizes: the same operations as [`Kernel::radial`], in the same order, on
+//! arrays (for the seas the grid's single-precision lane does not cover, see `grid`).
+//! Each pass is compiled for the baseline, AVX2 and AVX-512 (`lines::multiversion`), uses
+//! `fastmath`'s branch-free cores, and flags lanes outside their fast range, which the
+//! scalar function then redoes; so every value equals the scalar one bit for bit.
 
 use super::{
     C_HIGH, C_LOW, FrequencySpectrum, G, Kernel, PI, Radial, ShapeK, SpreadKind, SpreadTable,
-    U_MAX, half_one_plus_f32, kitaigorodskii, power_f32, tanh,
+    U_MAX, kitaigorodskii, tanh,
 };
-use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal, pow_unit_f32};
+use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
 use crate::field::lines::multiversion;
 
 /// Largest γ-exponent argument the fast path takes (the scalar path uses exp(−a) up to
@@ -45,37 +38,6 @@ impl RadialLine {
         self.a[i] = r.a;
         self.s[i] = r.s;
         self.beta[i] = r.beta;
-    }
-
-    fn get(&self, i: usize) -> Radial {
-        Radial {
-            inv_k: self.inv_k[i],
-            a: self.a[i],
-            s: self.s[i],
-            beta: self.beta[i],
-        }
-    }
-
-    /// Entries `0..=h−1` as computed, then entry `j ≥ h` from entry `n − j` (β only
-    /// `with_beta`: the other spreadings do not read it).
-    fn mirror_into(&self, n: usize, with_beta: bool, out: &mut RadialLine) {
-        out.resize(n);
-        let h = self.a.len();
-        let mut pairs = vec![
-            (&self.inv_k, &mut out.inv_k),
-            (&self.a, &mut out.a),
-            (&self.s, &mut out.s),
-        ];
-        if with_beta {
-            pairs.push((&self.beta, &mut out.beta));
-        }
-        for (src, dst) in pairs {
-            dst[..h].copy_from_slice(src);
-            // dst[j] = src[n − j] for j = h..n: src[n − h] down to src[1].
-            for (d, s) in dst[h..n].iter_mut().zip(src[1..=n - h].iter().rev()) {
-                *d = *s;
-            }
-        }
     }
 }
 
@@ -231,86 +193,6 @@ multiversion! {
     }
 }
 
-multiversion! {
-    /// The single-precision arguments of the directional powers of a line: (1 + c)/2 at
-    /// (kx, ky[j]) into `la`, at (−kx, −ky[j]) into `lb`, and s into `s32`.
-    fn power_arguments(
-        wx: f64,
-        wy: f64,
-        kx: f64,
-        ky: &[f64],
-        r: &RadialLine,
-        la: &mut [f32],
-        lb: &mut [f32],
-        s32: &mut [f32],
-    ) {
-        let n = ky.len();
-        let (inv_k, rs) = (&r.inv_k[..n], &r.s[..n]);
-        let (la, lb, s32) = (&mut la[..n], &mut lb[..n], &mut s32[..n]);
-        for j in 0..n {
-            let y = ky[j];
-            la[j] = half_one_plus_f32((kx * wx + y * wy) * inv_k[j]);
-            lb[j] = half_one_plus_f32((-kx * wx + -y * wy) * inv_k[j]);
-            s32[j] = power_f32(rs[j]);
-        }
-    }
-}
-
-multiversion! {
-    /// `d[j] = pow_unit_f32(l[j], s[j])`, 8 or 16 lanes at a time.
-    fn unit_powers(l: &[f32], s: &[f32], d: &mut [f32]) {
-        let n = l.len();
-        let (s, d) = (&s[..n], &mut d[..n]);
-        for j in 0..n {
-            d[j] = pow_unit_f32(l[j], s[j]);
-        }
-    }
-}
-
-multiversion! {
-    /// ½·Ψ·dkx·dky at (kx, ky[j]) into `pa` and at (−kx, −ky[j]) into `pb`, for the cos^{2s}
-    /// family, plain cos² and cos² with swell, from the powers `da`, `db`: bit for bit
-    /// `0.5 * (angular_grid(..) * dkx * dky)`.
-    fn angular_pair(
-        wx: f64,
-        wy: f64,
-        kind: SpreadKind,
-        kx: f64,
-        ky: &[f64],
-        r: &RadialLine,
-        da: &[f32],
-        db: &[f32],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-    ) {
-        let cos2 = kind != SpreadKind::Family;
-        let n = ky.len();
-        let (inv_k, ra, rs) = (&r.inv_k[..n], &r.a[..n], &r.s[..n]);
-        let (da, db, pa, pb) = (&da[..n], &db[..n], &mut pa[..n], &mut pb[..n]);
-        for j in 0..n {
-            let y = ky[j];
-            let ca = (kx * wx + y * wy) * inv_k[j];
-            let cb = (-kx * wx + -y * wy) * inv_k[j];
-            let (a, s) = (ra[j], rs[j]);
-            let (ma, mb) = if cos2 { (a * (ca * ca), a * (cb * cb)) } else { (a, a) };
-            let value = |m: f64, d: f32| {
-                if a == 0.0 {
-                    0.0
-                } else if s == 0.0 {
-                    m
-                } else {
-                    m * f64::from(d)
-                }
-            };
-            // The bits of `0.5 * (psi * dkx * dky)`: the products in that order.
-            pa[j] = 0.5 * (value(ma, da[j]) * dkx * dky);
-            pb[j] = 0.5 * (value(mb, db[j]) * dkx * dky);
-        }
-    }
-}
-
 /// Scratch of the radial passes: exponents, table arguments, ln Z, and the lanes the
 /// scalar function redoes.
 #[derive(Debug, Default)]
@@ -321,25 +203,10 @@ pub(super) struct RadialScratch {
     flags: Vec<u8>,
 }
 
-/// Scratch of one thread.
-#[derive(Debug, Default)]
-pub(super) struct LineScratch {
-    k2: Vec<f64>,
-    /// The powers' arguments and values (see `power_arguments`).
-    la: Vec<f32>,
-    lb: Vec<f32>,
-    s32: Vec<f32>,
-    da: Vec<f32>,
-    db: Vec<f32>,
-    radial: RadialScratch,
-    half: RadialLine,
-    full: RadialLine,
-}
-
 impl Kernel {
     /// The radial parts of every k² in `k2s` into `out`, bit for bit those of
     /// [`Kernel::radial`].
-    fn radial_line(
+    pub(super) fn radial_line(
         &self,
         k2s: &[f64],
         freq: &dyn FrequencySpectrum,
@@ -392,63 +259,5 @@ impl Kernel {
                 }
             }
         }
-    }
-
-    /// ½·dkx·dky·Ψ at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]` for every
-    /// j: the midpoint amplitude variances, bit for bit `0.5 * (angular(..) * dkx * dky)`.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn midpoint_pair_line(
-        &self,
-        freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-        scratch: &mut LineScratch,
-    ) {
-        let n = ky.len();
-        let LineScratch {
-            k2,
-            la,
-            lb,
-            s32,
-            da,
-            db,
-            radial: radial_scratch,
-            half,
-            full,
-        } = scratch;
-        // FFT order: ky[n − j] = −ky[j], so entries j and n − j share k².
-        let mirrored = n >= 2 && (1..n.div_ceil(2)).all(|j| ky[n - j] == -ky[j]);
-        let unique = if mirrored { n / 2 + 1 } else { n };
-        k2.clear();
-        k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
-        let radial = if mirrored {
-            self.radial_line(k2, freq, radial_scratch, half);
-            half.mirror_into(n, self.kind == SpreadKind::DonelanBanner, full);
-            &*full
-        } else {
-            self.radial_line(k2, freq, radial_scratch, full);
-            &*full
-        };
-        if self.kind == SpreadKind::DonelanBanner {
-            for j in 0..n {
-                let r = radial.get(j);
-                pa[j] = 0.5 * (self.angular_grid(&r, kx, ky[j]) * dkx * dky);
-                pb[j] = 0.5 * (self.angular_grid(&r, -kx, -ky[j]) * dkx * dky);
-            }
-            return;
-        }
-        for v in [&mut *la, &mut *lb, &mut *s32, &mut *da, &mut *db] {
-            v.resize(n, 0.0);
-        }
-        power_arguments(self.wx, self.wy, kx, ky, radial, la, lb, s32);
-        unit_powers(la, s32, da);
-        unit_powers(lb, s32, db);
-        angular_pair(
-            self.wx, self.wy, self.kind, kx, ky, radial, da, db, dkx, dky, pa, pb,
-        );
     }
 }

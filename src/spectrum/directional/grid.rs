@@ -1,0 +1,658 @@
+//! The midpoint amplitude variances of the grid, in single-precision base-2 exponents.
+//!
+//! A 4096² spectrum has 16.7 million amplitude variances, nearly all of them midpoint
+//! cells: P = ½·dkx·dky·a(|k|)·m(θ)·cos^{2s}(θ/2). Here each is computed as one power of
+//! two, P = 2^(n₀ + l + s·log2((1 + c)/2))·m with c = cos θ:
+//! - n₀ (an integer, per grid) and the constant in l put the exponent of the grid's peak
+//!   cell near 0, so that the single-precision exponent keeps ~1e-7 relative precision
+//!   where the energy is ([`Kernel::grid_scale`]);
+//! - l(|k|) = log2(½·dkx·dky·a) − n₀ and s(|k|) come once per distinct k² (k and −k share
+//!   them, and so do ky and −ky of a line in FFT order). For deep water, the JONSWAP family
+//!   and the cos^{2s} family without swell or plain cos² (the common seas) they are computed
+//!   in single precision from v = (ω/ωp)⁴ = G²k²/ωp⁴ alone: log2 a = const − 2 log2 v
+//!   − log2 e·(5/4 v⁻¹ − ln γ·exp(−(v^¼ − 1)²/2σ²) + ln N_s), s = s₀·2^(μ·log2(f/fp))
+//!   and log2 N_s by `log2_np_f32` ([`FastRadial`]); every other sea takes the
+//!   double-precision radial part ([`Kernel::radial`]) and its logarithm;
+//! - the power and the factor 2^(n₀ + …) are one `exp2_parts_f32` and an exact scaling to a
+//!   double ([`crate::fastmath::scale_f64`]).
+//!
+//! Every pass is written once per lane ([`fast_lane`], [`value`]) and used both by the
+//! scalar function ([`Kernel::grid_variance`]) and by the line passes (compiled for the
+//! baseline, AVX2 and AVX-512 by `lines::multiversion`), so a line equals the single
+//! values bit for bit. The single-precision exponent carries a relative error of about
+//! 1e-7·(1 + |exponent|) into P, where the exponent is log2 of P relative to the peak
+//! cell (so ~1e-7 at the peak, ~1e-6 twenty octaves below it), against the double-precision
+//! Ψ (tested); P below 2^−300 of the peak cell is 0.
+
+use super::line::{RadialLine, RadialScratch};
+use super::{FrequencySpectrum, G, Kernel, PI, SpreadKind, U_MAX, half_one_plus_f32, power_f32};
+use crate::fastmath::{
+    exp2_f32, exp2_parts_f32, ln, ln_is_special, ln_positive_normal, log2_f32, log2_unit_f32,
+    scale_f64,
+};
+use crate::field::lines::{Isa, multiversion};
+use crate::spectrum::spreading::log2_np_f32;
+
+const LOG2_E: f64 = std::f64::consts::LOG2_E;
+const LOG2_E_F32: f32 = std::f32::consts::LOG2_E;
+
+/// Values whose exponent is below this (relative to the grid's peak cell, ≈ 1e-90) are 0.
+const FLOOR_LOG2: f32 = -300.0;
+/// The power of two of values below the floor (p·2^(this + n₀) is 0 for every n₀).
+const BELOW_FLOOR: i32 = -(1 << 30);
+/// Exponents are capped here (a value 2^(2^20) beyond the peak is +∞ anyway).
+const CAP_LOG2: f32 = 1_048_576.0;
+/// The fast radial lane takes v = (ω/ωp)⁴ below this and k² within [1/this, this]; other
+/// lanes go through the double-precision radial part.
+const FAST_RANGE: f64 = 1.2676506002282294e30; // 2^100
+/// Largest spreading coefficient (s at the peak) of the fast lane (`log2_np_f32`'s range).
+const FAST_S_MAX: f64 = 1e6;
+
+/// The single-precision radial part of deep-water JONSWAP-family seas with the cos^{2s}
+/// family (no swell) or plain cos² spreading.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct FastRadial {
+    /// G²/ωp⁴ (v = k²·this), and in single precision.
+    c_v: f64,
+    c_v32: f32,
+    /// log2(A(2π)⁴·½·c_v²/G²) (− log2 π for plain cos²) minus the grid reference l₀.
+    base: f64,
+    /// ln γ·log2 e (0: Pierson–Moskowitz, no γ term).
+    ln_gamma2: f32,
+    /// 1/(2σ²)·log2 e below and above the peak.
+    c_low2: f32,
+    c_high2: f32,
+    /// cos^{2s} family: s = s0·2^(μ·y), y = ¼ log2 v − y_shift, μ = mu_lo (y < 0) or mu_hi.
+    family: bool,
+    s0: f32,
+    mu_lo: f32,
+    mu_hi: f32,
+    y_shift: f32,
+}
+
+impl FastRadial {
+    /// The fast lane's constants, if this kernel's sea is one it covers (see the module
+    /// docs); `l0` is the grid reference ([`Kernel::grid_l0`]).
+    pub(super) fn new(kern: &Kernel, l0: f64) -> Option<FastRadial> {
+        let sh = kern.shape.as_ref()?;
+        let exact = &kern.table.exact;
+        let family = match kern.kind {
+            SpreadKind::Family if exact.swell16 == 0.0 => true,
+            SpreadKind::Cos2Plain => false,
+            _ => return None,
+        };
+        if kern.depth != f64::INFINITY
+            || sh.tma_h != f64::INFINITY
+            || (family && !(exact.coef >= 0.0 && exact.coef <= FAST_S_MAX))
+        {
+            return None;
+        }
+        let c_v = G * G * sh.inv_wp4;
+        let mut base = (sh.coef * 0.5 * c_v * c_v / (G * G)).log2();
+        if !family {
+            base -= PI.log2();
+        }
+        Some(FastRadial {
+            c_v,
+            c_v32: c_v as f32,
+            base: base - l0,
+            ln_gamma2: (sh.ln_gamma * LOG2_E) as f32,
+            c_low2: (super::C_LOW * LOG2_E) as f32,
+            c_high2: (super::C_HIGH * LOG2_E) as f32,
+            family,
+            s0: exact.coef as f32,
+            mu_lo: exact.mu_lo as f32,
+            mu_hi: exact.mu_hi as f32,
+            y_shift: (sh.x_shift * LOG2_E) as f32,
+        })
+    }
+}
+
+/// The per-|k| parts of a grid value: exponent l, spreading exponent s, 1/|k| and
+/// Donelan–Banner's β.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct GridLane {
+    l: f32,
+    s: f32,
+    inv_k: f64,
+    beta: f64,
+}
+
+/// The fast radial part's first stage: v = (ω/ωp)⁴ in single precision, and whether the
+/// lane is in the fast range (else it takes the double-precision radial part).
+#[inline(always)]
+fn fast_v(fr: &FastRadial, k2: f64) -> (f32, bool) {
+    let v = k2 * fr.c_v;
+    let in_range = (v < FAST_RANGE) & (k2 < FAST_RANGE) & (k2 * FAST_RANGE > 1.0);
+    (v as f32, in_range)
+}
+
+/// The fast radial part from v (single precision only; `off` = the line's constant, see
+/// [`Kernel::grid_scale`]): (l, s, a first 1/|k| in single precision); l = −∞ where Ψ is
+/// 0 (u = 1/v beyond `U_MAX`). `FAMILY` and `PEAKED` must equal `fr.family` and
+/// `fr.ln_gamma2 != 0`.
+#[inline(always)]
+fn fast_core<const FAMILY: bool, const PEAKED: bool>(
+    fr: &FastRadial,
+    off: f32,
+    v: f32,
+) -> (f32, f32, f32) {
+    let lv = log2_f32(v);
+    let u = 1.0 / v;
+    let mut e = -1.25 * LOG2_E_F32 * u;
+    if PEAKED {
+        let q = exp2_f32(0.25 * lv);
+        let d = q - 1.0;
+        let c = if d <= 0.0 { fr.c_low2 } else { fr.c_high2 };
+        e += fr.ln_gamma2 * exp2_f32(-(d * d) * c);
+    }
+    let (s, lz) = if FAMILY {
+        let y = 0.25 * lv - fr.y_shift;
+        let mu = if y < 0.0 { fr.mu_lo } else { fr.mu_hi };
+        let s = fr.s0 * exp2_f32(mu * y);
+        (s, log2_np_f32(s))
+    } else {
+        (0.0, 0.0)
+    };
+    // 1/k² = c_v·u.
+    let y0 = (fr.c_v32 * u).sqrt();
+    let l = off + ((e - lz) - 2.0 * lv);
+    let zero = u > U_MAX as f32;
+    (
+        if zero { f32::NEG_INFINITY } else { l },
+        if zero { 0.0 } else { s },
+        if zero { 0.0 } else { y0 },
+    )
+}
+
+/// 1/|k| in double precision from its single-precision value (one Newton step).
+#[inline(always)]
+fn fast_inv_k(k2: f64, y0: f32) -> f64 {
+    let y = f64::from(y0);
+    y * (1.5 - 0.5 * k2 * y * y)
+}
+
+/// One lane of the fast radial part at k²: (l, s, 1/|k|, needs the double-precision
+/// radial part), the three stages in a row.
+#[inline(always)]
+fn fast_lane(fr: &FastRadial, off: f32, k2: f64) -> (f32, f32, f64, bool) {
+    let (v, in_range) = fast_v(fr, k2);
+    let (l, s, y0) = match (fr.family, fr.ln_gamma2 != 0.0) {
+        (true, false) => fast_core::<true, false>(fr, off, v),
+        (true, true) => fast_core::<true, true>(fr, off, v),
+        (false, false) => fast_core::<false, false>(fr, off, v),
+        (false, true) => fast_core::<false, true>(fr, off, v),
+    };
+    (l, s, fast_inv_k(k2, y0), !in_range)
+}
+
+/// The grid exponent of a double-precision radial value `a` (0 and subnormals: −∞).
+#[inline(always)]
+fn log2_relative(a: f64, l0: f64, frac: f64) -> f32 {
+    if ln_is_special(a) {
+        f32::NEG_INFINITY
+    } else {
+        ((ln_positive_normal(a) * LOG2_E - l0) + frac) as f32
+    }
+}
+
+/// 2^(l + s·log2 b) as (p, n), p·2^n (n far below any double's range under the floor);
+/// d = 1 − b (see [`log2_unit_f32`]).
+#[inline(always)]
+fn power_parts(l: f32, s: f32, b: f32, d: f32) -> (f32, i32) {
+    let t = l + s * log2_unit_f32(b, d);
+    let (p, n) = exp2_parts_f32(t.clamp(FLOOR_LOG2, CAP_LOG2));
+    (p, if t >= FLOOR_LOG2 { n } else { BELOW_FLOOR })
+}
+
+/// P = 2^(n0 + l + s·log2((1 + c)/2))·m, 0 below the floor.
+#[inline(always)]
+fn value(l: f32, s: f32, c: f64, m: f64, n0: i32) -> f64 {
+    let (p, n) = power_parts(l, s, half_one_plus_f32(c), half_one_plus_f32(-c));
+    scale_f64(p, n + n0) * m
+}
+
+multiversion! {
+    @on
+    /// [`fast_v`] of every k²; true if a lane is out of the fast range (flagged).
+    fn fast_v_pass_on(isa: Isa, fr: &FastRadial, k2: &[f64], v: &mut [f32], flags: &mut [u8]) -> bool {
+        let n = k2.len();
+        let (v, flags) = (&mut v[..n], &mut flags[..n]);
+        let mut any = 0u8;
+        for i in 0..n {
+            let ok;
+            (v[i], ok) = fast_v(fr, k2[i]);
+            flags[i] = !ok as u8;
+            any |= !ok as u8;
+        }
+        any != 0
+    }
+}
+
+multiversion! {
+    @on
+    /// [`fast_core`] of every v (single precision only: sixteen lanes with AVX-512).
+    fn fast_core_pass_on(
+        isa: Isa,
+        fr: &FastRadial,
+        off: f32,
+        v: &[f32],
+        l: &mut [f32],
+        s: &mut [f32],
+        y0: &mut [f32],
+    ) {
+        #[inline(always)]
+        fn run<const FAMILY: bool, const PEAKED: bool>(
+            fr: &FastRadial,
+            off: f32,
+            v: &[f32],
+            l: &mut [f32],
+            s: &mut [f32],
+            y0: &mut [f32],
+        ) {
+            let n = v.len();
+            let (l, s, y0) = (&mut l[..n], &mut s[..n], &mut y0[..n]);
+            for i in 0..n {
+                (l[i], s[i], y0[i]) = fast_core::<FAMILY, PEAKED>(fr, off, v[i]);
+            }
+        }
+        match (fr.family, fr.ln_gamma2 != 0.0) {
+            (true, false) => run::<true, false>(fr, off, v, l, s, y0),
+            (true, true) => run::<true, true>(fr, off, v, l, s, y0),
+            (false, false) => run::<false, false>(fr, off, v, l, s, y0),
+            (false, true) => run::<false, true>(fr, off, v, l, s, y0),
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// [`fast_inv_k`] of every lane.
+    fn fast_inv_k_pass_on(isa: Isa, k2: &[f64], y0: &[f32], inv_k: &mut [f64]) {
+        let n = k2.len();
+        let (y0, inv_k) = (&y0[..n], &mut inv_k[..n]);
+        for i in 0..n {
+            inv_k[i] = fast_inv_k(k2[i], y0[i]);
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// The grid exponents of double-precision radial values, and s in single precision.
+    fn log2_pass_on(isa: Isa, l0: f64, frac: f64, r: &RadialLine, l: &mut [f32], s: &mut [f32]) {
+        let n = l.len();
+        let (a, rs, s) = (&r.a[..n], &r.s[..n], &mut s[..n]);
+        for i in 0..n {
+            l[i] = log2_relative(a[i], l0, frac);
+            s[i] = power_f32(rs[i]);
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `ba[j]` and
+    /// at (−kx, −ky[j]) into `bb[j]`, and c into `ca`, `cb`.
+    fn cos_pass_on(
+        isa: Isa,
+        wx: f64,
+        wy: f64,
+        kx: f64,
+        ky: &[f64],
+        inv_k: &[f64],
+        ca: &mut [f64],
+        cb: &mut [f64],
+        ba: &mut [f32],
+        bb: &mut [f32],
+    ) {
+        let n = ky.len();
+        let (inv_k, ca, cb) = (&inv_k[..n], &mut ca[..n], &mut cb[..n]);
+        let (ba, bb) = (&mut ba[..n], &mut bb[..n]);
+        for j in 0..n {
+            let y = ky[j];
+            ca[j] = (kx * wx + y * wy) * inv_k[j];
+            cb[j] = (-kx * wx + -y * wy) * inv_k[j];
+            ba[j] = half_one_plus_f32(ca[j]);
+            bb[j] = half_one_plus_f32(cb[j]);
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// `(p[j], e[j]) = power_parts(l[j], s[j], b[j], d[j])`: single precision only, so
+    /// sixteen lanes wide with AVX-512.
+    fn power_pass_on(
+        isa: Isa,
+        l: &[f32],
+        s: &[f32],
+        b: &[f32],
+        d: &[f32],
+        p: &mut [f32],
+        e: &mut [i32],
+    ) {
+        let n = b.len();
+        let (l, s, d, p, e) = (&l[..n], &s[..n], &d[..n], &mut p[..n], &mut e[..n]);
+        for j in 0..n {
+            (p[j], e[j]) = power_parts(l[j], s[j], b[j], d[j]);
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// `out[j] = scale_f64(p[j], e[j] + n0) · m`, m = c[j]² for the cos² kinds, else 1.
+    fn scale_pass_on(isa: Isa, cos2: bool, n0: i32, p: &[f32], e: &[i32], c: &[f64], out: &mut [f64]) {
+        let n = out.len();
+        let (p, e, c) = (&p[..n], &e[..n], &c[..n]);
+        if cos2 {
+            for j in 0..n {
+                out[j] = scale_f64(p[j], e[j] + n0) * (c[j] * c[j]);
+            }
+        } else {
+            for j in 0..n {
+                out[j] = scale_f64(p[j], e[j] + n0) * 1.0;
+            }
+        }
+    }
+}
+
+/// Entries per chunk of the value passes (their buffers stay in the L1 cache).
+const CHUNK: usize = 512;
+
+/// The values at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]` for every
+/// spreading but Donelan–Banner (m = c² for the cos² kinds, else 1), chunk by chunk.
+#[allow(clippy::too_many_arguments)]
+fn value_passes(
+    isa: Isa,
+    kern: &Kernel,
+    n0: i32,
+    kx: f64,
+    ky: &[f64],
+    l: &[f32],
+    s: &[f32],
+    inv_k: &[f64],
+    pa: &mut [f64],
+    pb: &mut [f64],
+    buf: &mut ValueBuffers,
+) {
+    let cos2 = kern.kind != SpreadKind::Family;
+    let ValueBuffers {
+        ca,
+        cb,
+        ba,
+        bb,
+        p,
+        e,
+    } = buf;
+    for v in [&mut *ca, &mut *cb] {
+        v.resize(CHUNK, 0.0);
+    }
+    for v in [&mut *ba, &mut *bb, &mut *p] {
+        v.resize(CHUNK, 0.0);
+    }
+    e.resize(CHUNK, 0);
+    let n = ky.len();
+    for start in (0..n).step_by(CHUNK) {
+        let r = start..(start + CHUNK).min(n);
+        let m = r.len();
+        let (ca, cb, ba, bb, p, e) = (
+            &mut ca[..m],
+            &mut cb[..m],
+            &mut ba[..m],
+            &mut bb[..m],
+            &mut p[..m],
+            &mut e[..m],
+        );
+        cos_pass_on(
+            isa,
+            kern.wx,
+            kern.wy,
+            kx,
+            &ky[r.clone()],
+            &inv_k[r.clone()],
+            ca,
+            cb,
+            ba,
+            bb,
+        );
+        let (l, s) = (&l[r.clone()], &s[r.clone()]);
+        // (1 − c)/2 of one half-plane is (1 + c)/2 of the other.
+        power_pass_on(isa, l, s, ba, bb, p, e);
+        scale_pass_on(isa, cos2, n0, p, e, ca, &mut pa[r.clone()]);
+        power_pass_on(isa, l, s, bb, ba, p, e);
+        scale_pass_on(isa, cos2, n0, p, e, cb, &mut pb[r.clone()]);
+    }
+}
+
+/// Chunk buffers of [`value_passes`].
+#[derive(Debug, Default)]
+pub(super) struct ValueBuffers {
+    ca: Vec<f64>,
+    cb: Vec<f64>,
+    ba: Vec<f32>,
+    bb: Vec<f32>,
+    p: Vec<f32>,
+    e: Vec<i32>,
+}
+
+/// `dst[..h] = src`, then `dst[j] = src[n − j]` for j = h..n (the mirrored half of a line
+/// in FFT order).
+fn mirror_into<T: Copy + Default>(src: &[T], n: usize, dst: &mut Vec<T>) {
+    let h = src.len();
+    dst.resize(n, T::default());
+    dst[..h].copy_from_slice(src);
+    for (d, s) in dst[h..n].iter_mut().zip(src[1..=n - h].iter().rev()) {
+        *d = *s;
+    }
+}
+
+/// Buffers of the grid passes, one set per thread.
+#[derive(Debug, Default)]
+pub(super) struct GridScratch {
+    k2: Vec<f64>,
+    /// The fast radial stages' v and single-precision 1/|k|.
+    v: Vec<f32>,
+    y0: Vec<f32>,
+    flags: Vec<u8>,
+    /// Per distinct k²: l, s, 1/|k|, β.
+    l: Vec<f32>,
+    s: Vec<f32>,
+    inv_k: Vec<f64>,
+    beta: Vec<f64>,
+    /// The same for every entry of the line (mirrored).
+    full_l: Vec<f32>,
+    full_s: Vec<f32>,
+    full_inv_k: Vec<f64>,
+    full_beta: Vec<f64>,
+    radial: RadialScratch,
+    double: RadialLine,
+    values: ValueBuffers,
+}
+
+impl Kernel {
+    /// (n₀, frac) of a grid with cells dkx × dky: log2(½·dkx·dky) + l₀ = n₀ + frac, n₀ an
+    /// integer (clamped to ±10⁴: beyond, every value is 0 or +∞ anyway), |frac| ≤ ½.
+    pub(super) fn grid_scale(&self, dkx: f64, dky: f64) -> (i32, f64) {
+        let b = ln(0.5 * dkx * dky) * LOG2_E + self.grid_l0;
+        let n = b.round();
+        (n.clamp(-1e4, 1e4) as i32, b - n)
+    }
+
+    /// The per-|k| parts of the grid value at k² (`frac` from [`Kernel::grid_scale`]).
+    fn grid_lane(&self, k2: f64, frac: f64, freq: &dyn FrequencySpectrum) -> GridLane {
+        if let Some(fr) = &self.fast {
+            let off = (fr.base + frac) as f32;
+            let (l, s, inv_k, special) = fast_lane(fr, off, k2);
+            if !special {
+                return GridLane {
+                    l,
+                    s,
+                    inv_k,
+                    beta: 0.0,
+                };
+            }
+        }
+        let r = self.radial(k2, freq);
+        GridLane {
+            l: log2_relative(r.a, self.grid_l0, frac),
+            s: power_f32(r.s),
+            inv_k: r.inv_k,
+            beta: r.beta,
+        }
+    }
+
+    /// The grid value at (kx, ky) from its per-|k| parts.
+    fn grid_value(&self, g: &GridLane, kx: f64, ky: f64, n0: i32) -> f64 {
+        let cu = kx * self.wx + ky * self.wy;
+        let c = cu * g.inv_k;
+        let m = match self.kind {
+            SpreadKind::Family => 1.0,
+            SpreadKind::Cos2Plain | SpreadKind::Cos2Swell => c * c,
+            SpreadKind::DonelanBanner => {
+                let su = (ky * self.wx - kx * self.wy).abs();
+                super::sech2(g.beta * super::atan2_pos(su, cu))
+            }
+        };
+        value(g.l, g.s, c, m, n0)
+    }
+
+    /// The midpoint amplitude variance ½·dkx·dky·Ψ(kx, ky) as the grid computes it (see
+    /// the module docs).
+    pub(super) fn grid_variance(
+        &self,
+        kx: f64,
+        ky: f64,
+        dkx: f64,
+        dky: f64,
+        freq: &dyn FrequencySpectrum,
+    ) -> f64 {
+        let (n0, frac) = self.grid_scale(dkx, dky);
+        let g = self.grid_lane(kx * kx + ky * ky, frac, freq);
+        self.grid_value(&g, kx, ky, n0)
+    }
+
+    /// [`Kernel::grid_variance`] at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into
+    /// `pb[j]` for every j, bit for bit, in whole-line passes.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn grid_pair_line(
+        &self,
+        freq: &dyn FrequencySpectrum,
+        kx: f64,
+        ky: &[f64],
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+        scratch: &mut GridScratch,
+    ) {
+        self.grid_pair_line_on(Isa::detect(), freq, kx, ky, dkx, dky, pa, pb, scratch);
+    }
+
+    /// [`Kernel::grid_pair_line`] on the given instruction set.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn grid_pair_line_on(
+        &self,
+        isa: Isa,
+        freq: &dyn FrequencySpectrum,
+        kx: f64,
+        ky: &[f64],
+        dkx: f64,
+        dky: f64,
+        pa: &mut [f64],
+        pb: &mut [f64],
+        scratch: &mut GridScratch,
+    ) {
+        let n = ky.len();
+        let GridScratch {
+            k2,
+            v,
+            y0,
+            flags,
+            l,
+            s,
+            inv_k,
+            beta,
+            full_l,
+            full_s,
+            full_inv_k,
+            full_beta,
+            radial,
+            double,
+            values,
+        } = scratch;
+        // FFT order: ky[n − j] = −ky[j], so entries j and n − j share k².
+        let mirrored = n >= 2 && {
+            let h = n.div_ceil(2);
+            // (A fold without early exit, which vectorizes.)
+            ky[1..h]
+                .iter()
+                .zip(ky[n + 1 - h..].iter().rev())
+                .fold(true, |ok, (&a, &b)| ok & (b == -a))
+        };
+        let unique = if mirrored { n / 2 + 1 } else { n };
+        k2.clear();
+        k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
+        let (n0, frac) = self.grid_scale(dkx, dky);
+        let db = self.kind == SpreadKind::DonelanBanner;
+        for v in [&mut *l, &mut *s] {
+            v.resize(unique, 0.0);
+        }
+        for v in [&mut *inv_k, &mut *beta] {
+            v.resize(unique, 0.0);
+        }
+        flags.resize(unique, 0);
+        match &self.fast {
+            Some(fr) => {
+                let off = (fr.base + frac) as f32;
+                v.resize(unique, 0.0);
+                y0.resize(unique, 0.0);
+                let special = fast_v_pass_on(isa, fr, k2, v, flags);
+                fast_core_pass_on(isa, fr, off, v, l, s, y0);
+                fast_inv_k_pass_on(isa, k2, y0, inv_k);
+                if special {
+                    for i in 0..unique {
+                        if flags[i] != 0 {
+                            let g = self.grid_lane(k2[i], frac, freq);
+                            (l[i], s[i], inv_k[i]) = (g.l, g.s, g.inv_k);
+                        }
+                    }
+                }
+            }
+            None => {
+                self.radial_line(k2, freq, radial, double);
+                log2_pass_on(isa, self.grid_l0, frac, double, l, s);
+                inv_k.copy_from_slice(&double.inv_k[..unique]);
+                if db {
+                    beta.copy_from_slice(&double.beta[..unique]);
+                }
+            }
+        }
+        let (l, s, inv_k, beta) = if mirrored {
+            mirror_into(l, n, full_l);
+            mirror_into(s, n, full_s);
+            mirror_into(inv_k, n, full_inv_k);
+            if db {
+                mirror_into(beta, n, full_beta);
+            }
+            (&*full_l, &*full_s, &*full_inv_k, &*full_beta)
+        } else {
+            (&*l, &*s, &*inv_k, &*beta)
+        };
+        if db {
+            for j in 0..n {
+                let g = GridLane {
+                    l: l[j],
+                    s: s[j],
+                    inv_k: inv_k[j],
+                    beta: beta[j],
+                };
+                pa[j] = self.grid_value(&g, kx, ky[j], n0);
+                pb[j] = self.grid_value(&g, -kx, -ky[j], n0);
+            }
+            return;
+        }
+        value_passes(isa, self, n0, kx, ky, l, s, inv_k, pa, pb, values);
+    }
+}
