@@ -523,7 +523,8 @@ fn log2_parts(x: f32, one_minus: Option<f32>) -> f32 {
     };
     let u = num / den;
     let z = u * u;
-    e + u * (Q[0] + z * (Q[1] + z * (Q[2] + z * Q[3])))
+    // Estrin's scheme (short dependency chains).
+    e + u * ((Q[0] + z * Q[1]) + (z * z) * (Q[2] + z * Q[3]))
 }
 
 /// 2^t as `(p, n)`, `2^t = p·2^n`: `n = round(t)`, `p = 2^(t − n) ∈ [2^−½, 2^½]` by a
@@ -544,7 +545,10 @@ pub(crate) fn exp2_parts_f32(t: f32) -> (f32, i32) {
     let rounded = t + ROUND_MAGIC_F32;
     let n = rounded - ROUND_MAGIC_F32;
     let r = t - n;
-    let p = P[0] + r * (P[1] + r * (P[2] + r * (P[3] + r * (P[4] + r * (P[5] + r * P[6])))));
+    // Estrin's scheme (short dependency chains).
+    let r2 = r * r;
+    let p =
+        ((P[0] + r * P[1]) + r2 * (P[2] + r * P[3])) + (r2 * r2) * ((P[4] + r * P[5]) + r2 * P[6]);
     let ni = (rounded.to_bits() as i32).wrapping_sub(ROUND_MAGIC_F32.to_bits() as i32);
     (p, ni)
 }

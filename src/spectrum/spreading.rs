@@ -200,7 +200,7 @@ pub fn ln_np(p: f64) -> f64 {
     }
 }
 
-/// log2 N_s in single precision for s ≥ 0 (s ≤ 1e6): straight-line code (two divisions,
+/// log2 N_s in single precision for s ≥ 0 (s ≤ 1e6): straight-line code (one division,
 /// one `log2_f32`) for the grid's vectorized passes. By the recurrence
 /// Γ(x + 1) = x Γ(x) four times and the asymptotic series of the ratio,
 /// ln Γ(s+½) − ln Γ(s+1) = −½ ln(z·r²) − 1/(8z) + 1/(192z³) − 1/(640z⁵) + 17/(14336z⁷)
@@ -213,9 +213,11 @@ pub(crate) fn log2_np_f32(s: f32) -> f32 {
     const LOG2_2_SQRT_PI: f32 = (LN_2_SQRT_PI * std::f64::consts::LOG2_E) as f32;
     let z = s + 4.0;
     let p1 = ((s + 0.5) * (s + 1.5)) * ((s + 2.5) * (s + 3.5));
-    let p2 = ((s + 1.0) * (s + 2.0)) * ((s + 3.0) * z);
-    let r = p1 / p2;
-    let iz = 1.0 / z;
+    let q3 = (s + 1.0) * (s + 2.0) * (s + 3.0);
+    // One division: r = p1/p2 and 1/z = q3/p2, p2 = q3·z.
+    let inv_p2 = 1.0 / (q3 * z);
+    let r = p1 * inv_p2;
+    let iz = q3 * inv_p2;
     let iz2 = iz * iz;
     let series =
         iz * (-1.0 / 8.0 + iz2 * (1.0 / 192.0 + iz2 * (-1.0 / 640.0 + iz2 * (17.0 / 14336.0))));

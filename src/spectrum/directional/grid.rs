@@ -118,6 +118,14 @@ pub(super) struct GridLane {
     beta: f64,
 }
 
+/// `if c { a } else { b }` by bit masks (a select the compiler keeps in registers; a
+/// plain `if` between two fields can become a gather from memory).
+#[inline(always)]
+fn select(c: bool, a: f32, b: f32) -> f32 {
+    let m = (c as u32).wrapping_neg();
+    f32::from_bits((a.to_bits() & m) | (b.to_bits() & !m))
+}
+
 /// The fast radial part's first stage: v = (ω/ωp)⁴ in single precision, and whether the
 /// lane is in the fast range (else it takes the double-precision radial part).
 #[inline(always)]
@@ -143,12 +151,12 @@ fn fast_core<const FAMILY: bool, const PEAKED: bool>(
     if PEAKED {
         let q = exp2_f32(0.25 * lv);
         let d = q - 1.0;
-        let c = if d <= 0.0 { fr.c_low2 } else { fr.c_high2 };
+        let c = select(d <= 0.0, fr.c_low2, fr.c_high2);
         e += fr.ln_gamma2 * exp2_f32(-(d * d) * c);
     }
     let (s, lz) = if FAMILY {
         let y = 0.25 * lv - fr.y_shift;
-        let mu = if y < 0.0 { fr.mu_lo } else { fr.mu_hi };
+        let mu = select(y < 0.0, fr.mu_lo, fr.mu_hi);
         let s = fr.s0 * exp2_f32(mu * y);
         (s, log2_np_f32(s))
     } else {
@@ -437,13 +445,12 @@ pub(super) struct ValueBuffers {
     e: Vec<i32>,
 }
 
-/// `dst[..h] = src`, then `dst[j] = src[n − j]` for j = h..n (the mirrored half of a line
-/// in FFT order).
-fn mirror_into<T: Copy + Default>(src: &[T], n: usize, dst: &mut Vec<T>) {
-    let h = src.len();
-    dst.resize(n, T::default());
-    dst[..h].copy_from_slice(src);
-    for (d, s) in dst[h..n].iter_mut().zip(src[1..=n - h].iter().rev()) {
+/// `v[j] = v[n − j]` for j = h..n, n = v.len() (the mirrored half of a line in FFT order
+/// from its first h entries).
+fn mirror_in_place<T: Copy>(v: &mut [T], h: usize) {
+    let n = v.len();
+    let (src, dst) = v.split_at_mut(h);
+    for (d, s) in dst.iter_mut().zip(src[1..=n - h].iter().rev()) {
         *d = *s;
     }
 }
@@ -456,16 +463,11 @@ pub(super) struct GridScratch {
     v: Vec<f32>,
     y0: Vec<f32>,
     flags: Vec<u8>,
-    /// Per distinct k²: l, s, 1/|k|, β.
+    /// Per entry of the line: l, s, 1/|k|, β (computed for the distinct k², then mirrored).
     l: Vec<f32>,
     s: Vec<f32>,
     inv_k: Vec<f64>,
     beta: Vec<f64>,
-    /// The same for every entry of the line (mirrored).
-    full_l: Vec<f32>,
-    full_s: Vec<f32>,
-    full_inv_k: Vec<f64>,
-    full_beta: Vec<f64>,
     radial: RadialScratch,
     double: RadialLine,
     values: ValueBuffers,
@@ -574,10 +576,6 @@ impl Kernel {
             s,
             inv_k,
             beta,
-            full_l,
-            full_s,
-            full_inv_k,
-            full_beta,
             radial,
             double,
             values,
@@ -597,49 +595,50 @@ impl Kernel {
         let (n0, frac) = self.grid_scale(dkx, dky);
         let db = self.kind == SpreadKind::DonelanBanner;
         for v in [&mut *l, &mut *s] {
-            v.resize(unique, 0.0);
+            v.resize(n, 0.0);
         }
         for v in [&mut *inv_k, &mut *beta] {
-            v.resize(unique, 0.0);
+            v.resize(n, 0.0);
         }
         flags.resize(unique, 0);
-        match &self.fast {
-            Some(fr) => {
-                let off = (fr.base + frac) as f32;
-                v.resize(unique, 0.0);
-                y0.resize(unique, 0.0);
-                let special = fast_v_pass_on(isa, fr, k2, v, flags);
-                fast_core_pass_on(isa, fr, off, v, l, s, y0);
-                fast_inv_k_pass_on(isa, k2, y0, inv_k);
-                if special {
-                    for i in 0..unique {
-                        if flags[i] != 0 {
-                            let g = self.grid_lane(k2[i], frac, freq);
-                            (l[i], s[i], inv_k[i]) = (g.l, g.s, g.inv_k);
+        {
+            let (l, s, inv_k) = (&mut l[..unique], &mut s[..unique], &mut inv_k[..unique]);
+            match &self.fast {
+                Some(fr) => {
+                    let off = (fr.base + frac) as f32;
+                    v.resize(unique, 0.0);
+                    y0.resize(unique, 0.0);
+                    let special = fast_v_pass_on(isa, fr, k2, v, flags);
+                    fast_core_pass_on(isa, fr, off, v, l, s, y0);
+                    fast_inv_k_pass_on(isa, k2, y0, inv_k);
+                    if special {
+                        for i in 0..unique {
+                            if flags[i] != 0 {
+                                let g = self.grid_lane(k2[i], frac, freq);
+                                (l[i], s[i], inv_k[i]) = (g.l, g.s, g.inv_k);
+                            }
                         }
                     }
                 }
-            }
-            None => {
-                self.radial_line(k2, freq, radial, double);
-                log2_pass_on(isa, self.grid_l0, frac, double, l, s);
-                inv_k.copy_from_slice(&double.inv_k[..unique]);
-                if db {
-                    beta.copy_from_slice(&double.beta[..unique]);
+                None => {
+                    self.radial_line(k2, freq, radial, double);
+                    log2_pass_on(isa, self.grid_l0, frac, double, l, s);
+                    inv_k.copy_from_slice(&double.inv_k[..unique]);
+                    if db {
+                        beta[..unique].copy_from_slice(&double.beta[..unique]);
+                    }
                 }
             }
         }
-        let (l, s, inv_k, beta) = if mirrored {
-            mirror_into(l, n, full_l);
-            mirror_into(s, n, full_s);
-            mirror_into(inv_k, n, full_inv_k);
+        if mirrored {
+            mirror_in_place(l, unique);
+            mirror_in_place(s, unique);
+            mirror_in_place(inv_k, unique);
             if db {
-                mirror_into(beta, n, full_beta);
+                mirror_in_place(beta, unique);
             }
-            (&*full_l, &*full_s, &*full_inv_k, &*full_beta)
-        } else {
-            (&*l, &*s, &*inv_k, &*beta)
-        };
+        }
+        let (l, s, inv_k, beta) = (&*l, &*s, &*inv_k, &*beta);
         if db {
             for j in 0..n {
                 let g = GridLane {
