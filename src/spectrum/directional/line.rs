@@ -339,7 +339,7 @@ pub(super) struct LineScratch {
 impl Kernel {
     /// The radial parts of every k² in `k2s` into `out`, bit for bit those of
     /// [`Kernel::radial`].
-    fn radial_line(
+    pub(super) fn radial_line(
         &self,
         k2s: &[f64],
         freq: &dyn FrequencySpectrum,
