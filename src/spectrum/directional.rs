@@ -1428,6 +1428,48 @@ mod tests {
     }
 
     #[test]
+    fn batched_near_peak_cells_keep_the_cell_rule_when_the_nodes_are_not_symmetric() {
+        // The batch reuses a node's radial part for its reflections only where their k²
+        // are equal bit for bit: with rules whose nodes are not exactly symmetric (every
+        // first node moved by 1e-9 of itself) the values still equal the cell rule's.
+        const SHIFT: f64 = 1e-9;
+        let make = || -> Box<dyn FrequencySpectrum> {
+            Box::new(Jonswap::from_wind_fetch(11.0, 60e3, 3.3).unwrap())
+        };
+        for model in [SpreadingModel::Hasselmann, SpreadingModel::DonelanBanner] {
+            let mut s = sea(&make, model, 0.5, 0.3, Dispersion::Deep);
+            for rule in s.kern.rules.iter_mut().skip(1) {
+                rule[0].0 *= 1.0 + SHIFT;
+            }
+            let dk = s.peak_wavenumber() / 4.5;
+            let n = 48;
+            let ky: Vec<f64> = (0..n).map(|j| signed_index(j, n) as f64 * dk).collect();
+            let mut checked = 0;
+            for m in [0, 1, 2, 3, 5, 7, 9] {
+                let kx = m as f64 * dk;
+                let (mut pa, mut pb) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+                s.kern
+                    .near_cells_pair_line(s.freq(), kx, &ky, dk, dk, &mut pa, &mut pb);
+                for j in 0..n {
+                    if s.kern.is_far(kx * kx + ky[j] * ky[j], dk) {
+                        continue;
+                    }
+                    for (got, (x, y)) in [(pa[j], (kx, ky[j])), (pb[j], (-kx, -ky[j]))] {
+                        let want = 0.5 * s.cell_integral(x, y, dk, dk);
+                        assert_eq!(
+                            got.to_bits(),
+                            want.to_bits(),
+                            "{model:?} at ({x}, {y}): batched {got}, cell rule {want}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(checked > 500, "{model:?}: only {checked} cells checked");
+        }
+    }
+
+    #[test]
     fn finite_and_non_negative_over_a_wide_range() {
         for (name, make, disp) in seas() {
             for model in MODELS {

@@ -25,14 +25,40 @@ use crate::field::lines::{Isa, multiversion};
 /// Line entries tested together for a near cell.
 const BLOCK: usize = 32;
 
-/// One cell of the batch: its index in the line, its orders and where its nodes start
-/// (the +k cell's n_x·n_y nodes, x-node major, then the −k cell's).
+/// Where a block of nodes (the +k or the −k cell's) takes its radial parts.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// The computed radial parts from this index on.
+    Computed(usize),
+    /// The block that starts at this node, whose k² are the same in the same order.
+    Copy(usize),
+}
+
+/// One cell of the batch: its index in the line, its orders, where its nodes start and
+/// where each block's radial parts come from. The +k cell's n_x·n_y nodes come first,
+/// x-row by x-row, its y-nodes in the rule's order or reversed (`y_rev`); then the −k
+/// cell's, both axes the other way round, so that each node of the −k block sits where
+/// its reflection −k sits in the +k block. With `y_rev` the +k block is laid out as the
+/// reflection in y of the block of the cell at −ky[j] (FFT order).
 #[derive(Debug, Clone, Copy)]
 struct Cell {
     j: usize,
     nx: usize,
     ny: usize,
     start: usize,
+    y_rev: bool,
+    plus: Source,
+    minus: Source,
+}
+
+impl Cell {
+    /// The two blocks: (first node, x-nodes reversed, y-nodes reversed).
+    fn blocks(&self) -> [(usize, bool, bool); 2] {
+        [
+            (self.start, false, self.y_rev),
+            (self.start + self.nx * self.ny, true, !self.y_rev),
+        ]
+    }
 }
 
 /// Buffers of one thread (reused from line to line).
@@ -44,15 +70,12 @@ pub(super) struct CellScratch {
     x: Vec<f64>,
     y: Vec<f64>,
     k2: Vec<f64>,
-    /// Per node, the index of its k² in `unique`.
-    src: Vec<usize>,
+    /// The k² whose radial parts are computed.
     unique: Vec<f64>,
     radial_scratch: RadialScratch,
     radial: RadialLine,
     /// The radial parts per node.
-    inv_k: Vec<f64>,
-    a: Vec<f64>,
-    s: Vec<f64>,
+    nodes: RadialLine,
     psi: Vec<f64>,
     flags: Vec<u8>,
 }
@@ -172,13 +195,10 @@ impl Kernel {
             x,
             y,
             k2,
-            src,
             unique,
             radial_scratch,
             radial,
-            inv_k,
-            a,
-            s,
+            nodes,
             psi,
             flags,
         } = scratch;
@@ -206,20 +226,35 @@ impl Kernel {
                     pb[j] = 0.5 * (self.psi_grid(-kx, -ky[j], freq) * dkx * dky);
                     continue;
                 }
-                slot[j] = cells.len();
-                cells.push(Cell {
+                // The cell at −ky[j] of this line, if it came earlier with the same rule.
+                let mirror = (j > 0)
+                    .then(|| n - j)
+                    .filter(|&jm| jm < j && ky[jm] == -ky[j])
+                    .and_then(|jm| cells.get(slot[jm]).copied())
+                    .filter(|m| m.j == n - j && m.nx == nx && m.ny == ny && !m.y_rev);
+                let start = x.len();
+                let cell = Cell {
                     j,
                     nx,
                     ny,
-                    start: x.len(),
-                });
-                for (cx, cy) in [(kx, ky[j]), (-kx, -ky[j])] {
-                    for &(ox, _) in &self.rules[nx - 1] {
-                        let xn = cx + ox * dkx;
-                        for &(oy, _) in &self.rules[ny - 1] {
-                            x.push(xn);
-                            y.push(cy + oy * dky);
-                        }
+                    start,
+                    y_rev: mirror.is_some(),
+                    plus: mirror.map_or(Source::Computed(0), |m| Source::Copy(m.start)),
+                    minus: Source::Copy(start),
+                };
+                slot[j] = cells.len();
+                cells.push(cell);
+                for ((first, x_rev, y_rev), (cx, cy)) in
+                    cell.blocks().into_iter().zip([(kx, ky[j]), (-kx, -ky[j])])
+                {
+                    debug_assert_eq!(first, x.len());
+                    let (rx, ry) = (&self.rules[nx - 1], &self.rules[ny - 1]);
+                    for ix in 0..nx {
+                        let xn = cx + rx[if x_rev { nx - 1 - ix } else { ix }].0 * dkx;
+                        x.extend(std::iter::repeat_n(xn, ny));
+                        y.extend(
+                            (0..ny).map(|iy| cy + ry[if y_rev { ny - 1 - iy } else { iy }].0 * dky),
+                        );
                     }
                 }
             }
@@ -227,88 +262,113 @@ impl Kernel {
         if cells.is_empty() {
             return;
         }
-        // The distinct k²: a node takes the radial part of its mirror image where their
-        // k² are equal bit for bit (the image in the cell at −ky of the line, reflected in
-        // y, and the −k cell's node reflected through the cell's centre).
         k2.clear();
         k2.extend(x.iter().zip(y.iter()).map(|(&x, &y)| x * x + y * y));
-        src.clear();
+        // The k² to compute: a block takes the radial parts of its image where all their
+        // k² are equal bit for bit (so always, as the rules are symmetric).
         unique.clear();
-        let mut place = |i: usize, image: Option<usize>, src: &mut Vec<usize>| match image {
-            Some(m) if k2[m].to_bits() == k2[i].to_bits() => src.push(src[m]),
-            _ => {
-                src.push(unique.len());
-                unique.push(k2[i]);
-            }
-        };
-        for c in cells.iter() {
+        for c in cells.iter_mut() {
             let nn = c.nx * c.ny;
-            // The cell at −ky[j] of this line, if it came earlier with the same rule.
-            let mirror = (c.j > 0)
-                .then(|| n - c.j)
-                .filter(|&jm| jm < c.j && ky[jm] == -ky[c.j])
-                .and_then(|jm| cells.get(slot[jm]).copied())
-                .filter(|m| m.j == n - c.j && m.nx == c.nx && m.ny == c.ny);
-            for t in 0..nn {
-                let image = mirror.map(|m| m.start + (t / c.ny) * c.ny + (c.ny - 1 - t % c.ny));
-                place(c.start + t, image, src);
-            }
-            for t in 0..nn {
-                place(c.start + nn + t, Some(c.start + nn - 1 - t), src);
+            for (source, first) in [(&mut c.plus, c.start), (&mut c.minus, c.start + nn)] {
+                let block = &k2[first..first + nn];
+                let same = |from: usize| {
+                    let image = &k2[from..from + nn];
+                    block
+                        .iter()
+                        .zip(image)
+                        .all(|(p, q)| p.to_bits() == q.to_bits())
+                };
+                if !matches!(*source, Source::Copy(from) if same(from)) {
+                    *source = Source::Computed(unique.len());
+                    unique.extend_from_slice(block);
+                }
             }
         }
         self.radial_line(unique, freq, radial_scratch, radial);
+        // The radial parts of every node.
+        let count = x.len();
+        let with_beta = self.kind == SpreadKind::DonelanBanner;
+        let fill = |to: &mut Vec<f64>, from: &[f64]| {
+            to.resize(count, 0.0);
+            for c in cells.iter() {
+                let nn = c.nx * c.ny;
+                for (source, first) in [(c.plus, c.start), (c.minus, c.start + nn)] {
+                    match source {
+                        Source::Computed(at) => {
+                            to[first..first + nn].copy_from_slice(&from[at..at + nn])
+                        }
+                        Source::Copy(image) => to.copy_within(image..image + nn, first),
+                    }
+                }
+            }
+        };
+        fill(&mut nodes.inv_k, &radial.inv_k);
+        fill(&mut nodes.a, &radial.a);
+        fill(&mut nodes.s, &radial.s);
+        if with_beta {
+            fill(&mut nodes.beta, &radial.beta);
+        }
         // Ψ at every node.
-        let nodes = x.len();
-        psi.resize(nodes, 0.0);
-        if self.kind == SpreadKind::DonelanBanner {
-            for i in 0..nodes {
-                psi[i] = self.angular(&radial_at(radial, src[i]), x[i], y[i]);
+        psi.resize(count, 0.0);
+        let node = |i: usize| Radial {
+            inv_k: nodes.inv_k[i],
+            a: nodes.a[i],
+            s: nodes.s[i],
+            beta: if with_beta { nodes.beta[i] } else { 0.0 },
+        };
+        if with_beta {
+            for i in 0..count {
+                psi[i] = self.angular(&node(i), x[i], y[i]);
             }
         } else {
-            inv_k.clear();
-            a.clear();
-            s.clear();
-            inv_k.extend(src.iter().map(|&u| radial.inv_k[u]));
-            a.extend(src.iter().map(|&u| radial.a[u]));
-            s.extend(src.iter().map(|&u| radial.s[u]));
-            flags.resize(nodes, 0);
+            flags.resize(count, 0);
             if angular_nodes(
-                isa, self.wx, self.wy, self.kind, x, y, inv_k, a, s, psi, flags,
+                isa,
+                self.wx,
+                self.wy,
+                self.kind,
+                x,
+                y,
+                &nodes.inv_k,
+                &nodes.a,
+                &nodes.s,
+                psi,
+                flags,
             ) {
-                for i in 0..nodes {
+                for i in 0..count {
                     if flags[i] != 0 {
-                        psi[i] = self.angular(&radial_at(radial, src[i]), x[i], y[i]);
+                        psi[i] = self.angular(&node(i), x[i], y[i]);
                     }
                 }
             }
         }
-        // Each cell's sum in the order of `cell_integral`.
+        // Each cell's sums in the order of `cell_integral`: x-nodes, then y-nodes, each
+        // in the rule's order.
         for c in cells.iter() {
             let nn = c.nx * c.ny;
-            for (half, out) in [(c.start, &mut pa[c.j]), (c.start + nn, &mut pb[c.j])] {
-                let vals = &psi[half..half + nn];
+            let (rx, ry) = (&self.rules[c.nx - 1], &self.rules[c.ny - 1]);
+            let [plus, minus] = c.blocks().map(|(first, x_rev, y_rev)| {
+                let vals = &psi[first..first + nn];
                 let mut sum = 0.0;
-                for (row, &(_, wx)) in vals.chunks_exact(c.ny).zip(&self.rules[c.nx - 1]) {
+                for (ix, &(_, wx)) in rx.iter().enumerate() {
+                    let r = if x_rev { c.nx - 1 - ix } else { ix };
+                    let row = &vals[r * c.ny..(r + 1) * c.ny];
                     let mut line = 0.0;
-                    for (&v, &(_, wy)) in row.iter().zip(&self.rules[c.ny - 1]) {
-                        line += wy * v;
+                    if y_rev {
+                        for (&v, &(_, wy)) in row.iter().rev().zip(ry) {
+                            line += wy * v;
+                        }
+                    } else {
+                        for (&v, &(_, wy)) in row.iter().zip(ry) {
+                            line += wy * v;
+                        }
                     }
                     sum += wx * line;
                 }
-                *out = 0.5 * (sum * dkx * dky);
-            }
+                0.5 * (sum * dkx * dky)
+            });
+            pa[c.j] = plus;
+            pb[c.j] = minus;
         }
-    }
-}
-
-/// Entry `u` of a line of radial parts.
-#[inline(always)]
-fn radial_at(r: &RadialLine, u: usize) -> Radial {
-    Radial {
-        inv_k: r.inv_k[u],
-        a: r.a[u],
-        s: r.s[u],
-        beta: r.beta[u],
     }
 }
