@@ -1,13 +1,15 @@
 //! The cells near the peak of a line of wavevectors, integrated in whole-line passes.
 //!
 //! A line's cells that are not far from the peak ([`Kernel::is_far`]) take the
-//! n_x × n_y Gauss–Legendre rule of [`DirectionalSpectrum::cell_integral`] (4 × 4 to
-//! 16 × 16 nodes each). Rather than Ψ node by node, every node of every such cell of the
+//! n_x × n_y Gauss–Legendre rule of [`DirectionalSpectrum::cell_integral`] (up to
+//! 16 × 16 nodes each; 4 × 4 at the peak of a 4096² grid 1 m apart). Rather than Ψ node by node, every node of every such cell of the
 //! line, in both half-planes (the cell at (kx, ky[j]) and the one at (−kx, −ky[j])), goes
 //! into one set of arrays: their radial parts come from [`Kernel::radial_line`], once
 //! per distinct k² (the nodes of the −k cell are those of the +k cell reflected, and in
-//! FFT order the cells at ky and −ky mirror each other, so most k² come four times; a
-//! reuse is taken only where the k² are equal bit for bit), their directional parts from
+//! FFT order the cells at ky and −ky mirror each other, so most k² come four times; the
+//! nodes are laid out so that a block and its mirror image list the same k² in the same
+//! order, and a block reuses its image's radial parts only where all of them are equal
+//! bit for bit), their directional parts from
 //! a pass compiled for each instruction set (`lines::multiversion`) with `fastmath`'s
 //! branch-free ln and exp, whose flagged lanes the scalar [`Kernel::angular`] redoes.
 //! Each cell's sum is then formed exactly as `cell_integral` forms it, so every value
@@ -154,7 +156,7 @@ impl Kernel {
         pb: &mut [f64],
     ) {
         let isa = Isa::detect();
-        CELL_SCRATCH.with(|cell| match cell.try_borrow_mut() {
+        CELL_SCRATCH.with(|buffers| match buffers.try_borrow_mut() {
             Ok(mut scratch) => {
                 self.near_cells_pair_line_on(isa, freq, kx, ky, dkx, dky, pa, pb, &mut scratch)
             }
