@@ -62,6 +62,7 @@ use super::{Dispersion, G, Spectrum};
 use crate::error::ParamError;
 use crate::fastmath::{exp, ln, sin_cos};
 
+mod cells;
 mod grid;
 mod line;
 
@@ -820,7 +821,7 @@ impl Spectrum for DirectionalSpectrum {
 
     /// Bit for bit the values of `amplitude_variance`: every cell by the midpoint, in
     /// whole-line passes that vectorize (see `line`), then the cells near the peak again
-    /// by the cell rule one by one (a few hundred of a 4096² grid).
+    /// by the cell rule, all nodes of the line's near cells together (see `cells`).
     fn amplitude_variance_pair_line(
         &self,
         kx: f64,
@@ -853,12 +854,8 @@ impl Spectrum for DirectionalSpectrum {
         if self.kern.is_far(kx * kx, h) {
             return;
         }
-        for j in 0..n {
-            if !self.kern.is_far(kx * kx + ky[j] * ky[j], h) {
-                pa[j] = self.amplitude_variance(kx, ky[j], dkx, dky);
-                pb[j] = self.amplitude_variance(-kx, -ky[j], dkx, dky);
-            }
-        }
+        self.kern
+            .near_cells_pair_line(self.freq.as_ref(), kx, ky, dkx, dky, pa, pb);
     }
 }
 
@@ -1452,6 +1449,142 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn batched_near_peak_cells_equal_the_cell_rule_bit_for_bit_on_every_instruction_set() {
+        use crate::field::lines::Isa;
+        // Lines of a grid whose peak spans 4.5 cells (kx from 0 to beyond the near zone, ky
+        // in FFT order and in a line without mirrored entries, odd and even lengths), and
+        // of a grid so fine (kp = 600 Δk) that cells at the peak take the midpoint.
+        const MIN_NEAR: usize = 300;
+        const COARSE: f64 = 4.5;
+        const FINE: f64 = 600.0;
+        let fft_line = |n: usize, dk: f64| -> Vec<f64> {
+            (0..n).map(|j| signed_index(j, n) as f64 * dk).collect()
+        };
+        let mut scratch = cells::CellScratch::default();
+        for (name, make, disp) in seas() {
+            for model in MODELS {
+                for swell in [0.0, 1.0] {
+                    let s = sea(make.as_ref(), model, swell, 0.6, disp);
+                    let kp = s.peak_wavenumber();
+                    let mut cases: Vec<(f64, Vec<f64>, f64, f64)> = Vec::new();
+                    let dk = kp / COARSE;
+                    let shifted: Vec<f64> = (0..41).map(|j| (j as f64 - 20.3) * 1.3 * dk).collect();
+                    for m in [0, 1, 2, 3, 5, 8, 11, 15, 20, 27, 35, 45, 60] {
+                        let kx = m as f64 * dk;
+                        cases.push((kx, fft_line(64, 1.3 * dk), dk, 1.3 * dk));
+                        cases.push((-kx, fft_line(63, 1.3 * dk), dk, 1.3 * dk));
+                        cases.push((kx, shifted.clone(), dk, 1.3 * dk));
+                    }
+                    let dk = kp / FINE;
+                    for m in [600, 750] {
+                        cases.push((m as f64 * dk, fft_line(64, 1.3 * dk), dk, 1.3 * dk));
+                    }
+                    let (mut near, mut far, mut midpoint) = (0, 0, 0);
+                    for (kx, ky, dkx, dky) in &cases {
+                        let (kx, n) = (*kx, ky.len());
+                        let h = dkx.max(*dky);
+                        // The reference: 0.5·cell_integral of the near cells that take a
+                        // Gauss–Legendre rule; NaN (left as it was) at the midpoint cells,
+                        // far or 1 × 1.
+                        let want: Vec<(f64, f64)> = ky
+                            .iter()
+                            .map(|&y| {
+                                if s.kern.is_far(kx * kx + y * y, h) {
+                                    return (f64::NAN, f64::NAN);
+                                }
+                                if s.cell_orders(kx, y, *dkx, *dky) == (1, 1) {
+                                    midpoint += 1;
+                                    return (f64::NAN, f64::NAN);
+                                }
+                                (
+                                    0.5 * s.cell_integral(kx, y, *dkx, *dky),
+                                    0.5 * s.cell_integral(-kx, -y, *dkx, *dky),
+                                )
+                            })
+                            .collect();
+                        let near_here = want.iter().filter(|w| !w.0.is_nan()).count();
+                        near += 2 * near_here;
+                        far += 2 * (n - near_here);
+                        for isa in Isa::available() {
+                            let (mut pa, mut pb) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+                            s.kern.near_cells_pair_line_on(
+                                isa,
+                                s.freq(),
+                                kx,
+                                ky,
+                                *dkx,
+                                *dky,
+                                &mut pa,
+                                &mut pb,
+                                &mut scratch,
+                            );
+                            for j in 0..n {
+                                for (got, w, sign) in
+                                    [(pa[j], want[j].0, 1.0), (pb[j], want[j].1, -1.0)]
+                                {
+                                    assert_eq!(
+                                        got.to_bits(),
+                                        w.to_bits(),
+                                        "{name} {model:?} ξ {swell} {isa:?}: cell ({}, {}) of Δk ({dkx}, {dky}): batched {got}, cell rule {w}",
+                                        sign * kx,
+                                        sign * ky[j]
+                                    );
+                                }
+                            }
+                        }
+                    }
+                    assert!(
+                        near >= MIN_NEAR && far > 0 && midpoint > 0,
+                        "{name} {model:?} ξ {swell}: {near} near cells ({midpoint} by the midpoint), {far} far"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn batched_near_peak_cells_keep_the_cell_rule_when_the_nodes_are_not_symmetric() {
+        // The batch reuses a node's radial part for its reflections only where their k²
+        // are equal bit for bit: with rules whose nodes are not exactly symmetric (every
+        // first node moved by 1e-9 of itself) the values still equal the cell rule's.
+        const SHIFT: f64 = 1e-9;
+        let make = || -> Box<dyn FrequencySpectrum> {
+            Box::new(Jonswap::from_wind_fetch(11.0, 60e3, 3.3).unwrap())
+        };
+        for model in [SpreadingModel::Hasselmann, SpreadingModel::DonelanBanner] {
+            let mut s = sea(&make, model, 0.5, 0.3, Dispersion::Deep);
+            for rule in s.kern.rules.iter_mut().skip(1) {
+                rule[0].0 *= 1.0 + SHIFT;
+            }
+            let dk = s.peak_wavenumber() / 4.5;
+            let n = 48;
+            let ky: Vec<f64> = (0..n).map(|j| signed_index(j, n) as f64 * dk).collect();
+            let mut checked = 0;
+            for m in [0, 1, 2, 3, 5, 7, 9] {
+                let kx = m as f64 * dk;
+                let (mut pa, mut pb) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+                s.kern
+                    .near_cells_pair_line(s.freq(), kx, &ky, dk, dk, &mut pa, &mut pb);
+                for j in 0..n {
+                    if s.kern.is_far(kx * kx + ky[j] * ky[j], dk) {
+                        continue;
+                    }
+                    for (got, (x, y)) in [(pa[j], (kx, ky[j])), (pb[j], (-kx, -ky[j]))] {
+                        let want = 0.5 * s.cell_integral(x, y, dk, dk);
+                        assert_eq!(
+                            got.to_bits(),
+                            want.to_bits(),
+                            "{model:?} at ({x}, {y}): batched {got}, cell rule {want}"
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(checked > 500, "{model:?}: only {checked} cells checked");
         }
     }
 
