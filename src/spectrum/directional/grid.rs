@@ -445,13 +445,30 @@ pub(super) struct ValueBuffers {
     e: Vec<i32>,
 }
 
-/// `v[j] = v[n − j]` for j = h..n, n = v.len() (the mirrored half of a line in FFT order
-/// from its first h entries).
-fn mirror_in_place<T: Copy>(v: &mut [T], h: usize) {
-    let n = v.len();
-    let (src, dst) = v.split_at_mut(h);
-    for (d, s) in dst.iter_mut().zip(src[1..=n - h].iter().rev()) {
-        *d = *s;
+multiversion! {
+    @on
+    /// `v[j] = v[n − j]` for j = h..n, n = v.len() (the mirrored half of a line in FFT
+    /// order from its first h entries).
+    fn mirror_f32_on(isa: Isa, v: &mut [f32], h: usize) {
+        let (src, dst) = v.split_at_mut(h);
+        let m = dst.len();
+        let src = &src[1..=m];
+        for i in 0..m {
+            dst[i] = src[m - 1 - i];
+        }
+    }
+}
+
+multiversion! {
+    @on
+    /// [`mirror_f32_on`] for doubles.
+    fn mirror_f64_on(isa: Isa, v: &mut [f64], h: usize) {
+        let (src, dst) = v.split_at_mut(h);
+        let m = dst.len();
+        let src = &src[1..=m];
+        for i in 0..m {
+            dst[i] = src[m - 1 - i];
+        }
     }
 }
 
@@ -631,11 +648,11 @@ impl Kernel {
             }
         }
         if mirrored {
-            mirror_in_place(l, unique);
-            mirror_in_place(s, unique);
-            mirror_in_place(inv_k, unique);
+            mirror_f32_on(isa, l, unique);
+            mirror_f32_on(isa, s, unique);
+            mirror_f64_on(isa, inv_k, unique);
             if db {
-                mirror_in_place(beta, unique);
+                mirror_f64_on(isa, beta, unique);
             }
         }
         let (l, s, inv_k, beta) = (&*l, &*s, &*inv_k, &*beta);
