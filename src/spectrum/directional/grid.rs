@@ -301,28 +301,48 @@ multiversion! {
 multiversion! {
     @on
     /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `ba[j]` and
-    /// at (−kx, −ky[j]) into `bb[j]`, and c into `ca`, `cb`.
+    /// (1 − c)/2 (the argument at (−kx, −ky[j]), whose cosine is exactly −c) into `bb[j]`,
+    /// and c into `c` if `keep_c`.
     fn cos_pass_on(
         isa: Isa,
+        keep_c: bool,
         wx: f64,
         wy: f64,
         kx: f64,
         ky: &[f64],
         inv_k: &[f64],
-        ca: &mut [f64],
-        cb: &mut [f64],
+        c: &mut [f64],
         ba: &mut [f32],
         bb: &mut [f32],
     ) {
-        let n = ky.len();
-        let (inv_k, ca, cb) = (&inv_k[..n], &mut ca[..n], &mut cb[..n]);
-        let (ba, bb) = (&mut ba[..n], &mut bb[..n]);
-        for j in 0..n {
-            let y = ky[j];
-            ca[j] = (kx * wx + y * wy) * inv_k[j];
-            cb[j] = (-kx * wx + -y * wy) * inv_k[j];
-            ba[j] = half_one_plus_f32(ca[j]);
-            bb[j] = half_one_plus_f32(cb[j]);
+        #[inline(always)]
+        #[allow(clippy::too_many_arguments)]
+        fn run<const KEEP_C: bool>(
+            wx: f64,
+            wy: f64,
+            kx: f64,
+            ky: &[f64],
+            inv_k: &[f64],
+            c: &mut [f64],
+            ba: &mut [f32],
+            bb: &mut [f32],
+        ) {
+            let n = ky.len();
+            let (inv_k, c) = (&inv_k[..n], &mut c[..n]);
+            let (ba, bb) = (&mut ba[..n], &mut bb[..n]);
+            for j in 0..n {
+                let ca = (kx * wx + ky[j] * wy) * inv_k[j];
+                if KEEP_C {
+                    c[j] = ca;
+                }
+                ba[j] = half_one_plus_f32(ca);
+                bb[j] = half_one_plus_f32(-ca);
+            }
+        }
+        if keep_c {
+            run::<true>(wx, wy, kx, ky, inv_k, c, ba, bb)
+        } else {
+            run::<false>(wx, wy, kx, ky, inv_k, c, ba, bb)
         }
     }
 }
@@ -351,16 +371,25 @@ multiversion! {
 multiversion! {
     @on
     /// `out[j] = scale_f64(p[j], e[j] + n0) · m`, m = c[j]² for the cos² kinds, else 1.
-    fn scale_pass_on(isa: Isa, cos2: bool, n0: i32, p: &[f32], e: &[i32], c: &[f64], out: &mut [f64]) {
+    fn scale_pass_on(
+        isa: Isa,
+        cos2: bool,
+        n0: i32,
+        p: &[f32],
+        e: &[i32],
+        c: &[f64],
+        out: &mut [f64],
+    ) {
         let n = out.len();
-        let (p, e, c) = (&p[..n], &e[..n], &c[..n]);
+        let (p, e) = (&p[..n], &e[..n]);
         if cos2 {
+            let c = &c[..n];
             for j in 0..n {
                 out[j] = scale_f64(p[j], e[j] + n0) * (c[j] * c[j]);
             }
         } else {
             for j in 0..n {
-                out[j] = scale_f64(p[j], e[j] + n0) * 1.0;
+                out[j] = scale_f64(p[j], e[j] + n0);
             }
         }
     }
@@ -386,17 +415,8 @@ fn value_passes(
     buf: &mut ValueBuffers,
 ) {
     let cos2 = kern.kind != SpreadKind::Family;
-    let ValueBuffers {
-        ca,
-        cb,
-        ba,
-        bb,
-        p,
-        e,
-    } = buf;
-    for v in [&mut *ca, &mut *cb] {
-        v.resize(CHUNK, 0.0);
-    }
+    let ValueBuffers { c, ba, bb, p, e } = buf;
+    c.resize(CHUNK, 0.0);
     for v in [&mut *ba, &mut *bb, &mut *p] {
         v.resize(CHUNK, 0.0);
     }
@@ -405,44 +425,56 @@ fn value_passes(
     for start in (0..n).step_by(CHUNK) {
         let r = start..(start + CHUNK).min(n);
         let m = r.len();
-        let (ca, cb, ba, bb, p, e) = (
-            &mut ca[..m],
-            &mut cb[..m],
+        let (c, ba, bb, p, e) = (
+            &mut c[..m],
             &mut ba[..m],
             &mut bb[..m],
             &mut p[..m],
             &mut e[..m],
         );
-        cos_pass_on(
-            isa,
-            kern.wx,
-            kern.wy,
-            kx,
+        let (ky, inv_k, l, s) = (
             &ky[r.clone()],
             &inv_k[r.clone()],
-            ca,
-            cb,
-            ba,
-            bb,
+            &l[r.clone()],
+            &s[r.clone()],
         );
-        let (l, s) = (&l[r.clone()], &s[r.clone()]);
-        // (1 − c)/2 of one half-plane is (1 + c)/2 of the other.
+        cos_pass_on(isa, cos2, kern.wx, kern.wy, kx, ky, inv_k, c, ba, bb);
+        // (1 − c)/2 of one half-plane is (1 + c)/2 of the other; m = c² is the same.
         power_pass_on(isa, l, s, ba, bb, p, e);
-        scale_pass_on(isa, cos2, n0, p, e, ca, &mut pa[r.clone()]);
+        scale_pass_on(isa, cos2, n0, p, e, c, &mut pa[r.clone()]);
         power_pass_on(isa, l, s, bb, ba, p, e);
-        scale_pass_on(isa, cos2, n0, p, e, cb, &mut pb[r.clone()]);
+        scale_pass_on(isa, cos2, n0, p, e, c, &mut pb[r]);
     }
 }
 
 /// Chunk buffers of [`value_passes`].
 #[derive(Debug, Default)]
 pub(super) struct ValueBuffers {
-    ca: Vec<f64>,
-    cb: Vec<f64>,
+    c: Vec<f64>,
     ba: Vec<f32>,
     bb: Vec<f32>,
     p: Vec<f32>,
     e: Vec<i32>,
+}
+
+/// `dst[i] = src[len − 1 − i]`, in blocks of 16 (a load, a permutation and a store each).
+#[inline(always)]
+fn reverse_copy<T: Copy + Default>(src: &[T], dst: &mut [T]) {
+    const B: usize = 16;
+    let m = dst.len().min(src.len());
+    let (src, dst) = (&src[..m], &mut dst[..m]);
+    let mut blocks = dst.chunks_exact_mut(B);
+    for (d, s) in (&mut blocks).zip(src.rchunks_exact(B)) {
+        let mut a = [T::default(); B];
+        a.copy_from_slice(s);
+        a.reverse();
+        d.copy_from_slice(&a);
+    }
+    let rest = m % B;
+    let d = blocks.into_remainder();
+    for k in 0..rest {
+        d[k] = src[rest - 1 - k];
+    }
 }
 
 multiversion! {
@@ -452,10 +484,7 @@ multiversion! {
     fn mirror_f32_on(isa: Isa, v: &mut [f32], h: usize) {
         let (src, dst) = v.split_at_mut(h);
         let m = dst.len();
-        let src = &src[1..=m];
-        for i in 0..m {
-            dst[i] = src[m - 1 - i];
-        }
+        reverse_copy::<f32>(&src[1..=m], dst);
     }
 }
 
@@ -465,10 +494,7 @@ multiversion! {
     fn mirror_f64_on(isa: Isa, v: &mut [f64], h: usize) {
         let (src, dst) = v.split_at_mut(h);
         let m = dst.len();
-        let src = &src[1..=m];
-        for i in 0..m {
-            dst[i] = src[m - 1 - i];
-        }
+        reverse_copy::<f64>(&src[1..=m], dst);
     }
 }
 
