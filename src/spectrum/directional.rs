@@ -41,12 +41,15 @@
 //! unit of x on x ∈ [−3, 6], split at the breakpoints of the formulas; error of the
 //! exponent ~3e-9; exact outside). Other frequency models go through
 //! `FrequencySpectrum::density` (a virtual call). A line reuses the radial part for
-//! entries of equal k² (see `amplitude_variance_line`). At the midpoint cells of a grid
-//! (nearly all of them) the power cos^{2s}(θ/2) is taken in single precision
-//! ([`crate::fastmath::pow_unit_f32`], ~1e-7 relative, 0 below 2^−124 of the radial
-//! value): it is most of the arithmetic of a spectrum, runs twice as many lanes wide, and
-//! the amplitudes it scales are single-precision numbers anyway; [`DirectionalSpectrum::psi`]
-//! keeps the double-precision power. Only basic IEEE operations and [`crate::fastmath`]
+//! entries of equal k² (see `amplitude_variance_line`). The midpoint cells of a grid
+//! (nearly all of them) are computed as one single-precision power of two each, with
+//! a single-precision radial part for the common deep-water seas (see `grid`: ~1e-7
+//! relative at the peak, 1e-6·(1 + |log2 of the value below the peak cell's|) at most,
+//! tested; 0 below 2^−300 of the peak cell): that is most of the arithmetic of a
+//! spectrum, runs sixteen lanes wide with AVX-512, and the amplitudes are
+//! single-precision numbers anyway. The near-peak cells of a line take the cell rule in
+//! whole-array passes (see `cells`); [`DirectionalSpectrum::psi`] and the cell rule keep
+//! double precision. Only basic IEEE operations and [`crate::fastmath`]
 //! are used, so values are bit-identical on every platform.
 
 use rayon::prelude::*;
@@ -820,7 +823,7 @@ impl Spectrum for DirectionalSpectrum {
     }
 
     /// Bit for bit the values of `amplitude_variance`: every cell by the midpoint, in
-    /// whole-line passes that vectorize (see `line`), then the cells near the peak again
+    /// whole-line passes that vectorize (see `grid`), then the cells near the peak again
     /// by the cell rule, all nodes of the line's near cells together (see `cells`).
     fn amplitude_variance_pair_line(
         &self,
@@ -833,36 +836,44 @@ impl Spectrum for DirectionalSpectrum {
     ) {
         let n = ky.len().min(pa.len()).min(pb.len());
         let (ky, pa, pb) = (&ky[..n], &mut pa[..n], &mut pb[..n]);
-        LINE_SCRATCH.with(|cell| match cell.try_borrow_mut() {
-            Ok(mut scratch) => {
-                self.kern
-                    .grid_pair_line(self.freq.as_ref(), kx, ky, dkx, dky, pa, pb, &mut scratch)
+        let isa = crate::field::lines::Isa::detect();
+        let freq = self.freq.as_ref();
+        let mut line = |scratch: &mut LineScratch| {
+            let kern = &self.kern;
+            kern.grid_pair_line_on(isa, freq, kx, ky, dkx, dky, pa, pb, &mut scratch.grid);
+            // k² ≥ kx²: a line whose kx is far has only far cells.
+            if !kern.is_far(kx * kx, dkx.max(dky)) {
+                kern.near_cells_pair_line_on(
+                    isa,
+                    freq,
+                    kx,
+                    ky,
+                    dkx,
+                    dky,
+                    pa,
+                    pb,
+                    &mut scratch.cells,
+                );
             }
-            Err(_) => self.kern.grid_pair_line(
-                self.freq.as_ref(),
-                kx,
-                ky,
-                dkx,
-                dky,
-                pa,
-                pb,
-                &mut grid::GridScratch::default(),
-            ),
+        };
+        LINE_SCRATCH.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut scratch) => line(&mut scratch),
+            Err(_) => line(&mut LineScratch::default()),
         });
-        let h = dkx.max(dky);
-        // k² ≥ kx²: a line whose kx is far has only far cells.
-        if self.kern.is_far(kx * kx, h) {
-            return;
-        }
-        self.kern
-            .near_cells_pair_line(self.freq.as_ref(), kx, ky, dkx, dky, pa, pb);
     }
+}
+
+/// Buffers of the line passes.
+#[derive(Debug, Default)]
+struct LineScratch {
+    grid: grid::GridScratch,
+    cells: cells::CellScratch,
 }
 
 thread_local! {
     /// Buffers of the line passes, one set per thread.
-    static LINE_SCRATCH: std::cell::RefCell<grid::GridScratch> =
-        std::cell::RefCell::new(grid::GridScratch::default());
+    static LINE_SCRATCH: std::cell::RefCell<LineScratch> =
+        std::cell::RefCell::new(LineScratch::default());
 }
 
 /// atan2(y, x) for y ≥ 0, in [0, π]: fdlibm's atan (basic operations only, so the same
@@ -1567,8 +1578,7 @@ mod tests {
             for m in [0, 1, 2, 3, 5, 7, 9] {
                 let kx = m as f64 * dk;
                 let (mut pa, mut pb) = (vec![f64::NAN; n], vec![f64::NAN; n]);
-                s.kern
-                    .near_cells_pair_line(s.freq(), kx, &ky, dk, dk, &mut pa, &mut pb);
+                s.amplitude_variance_pair_line(kx, &ky, dk, dk, &mut pa, &mut pb);
                 for j in 0..n {
                     if s.kern.is_far(kx * kx + ky[j] * ky[j], dk) {
                         continue;

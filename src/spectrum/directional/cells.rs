@@ -83,12 +83,6 @@ pub(super) struct CellScratch {
     flags: Vec<u8>,
 }
 
-thread_local! {
-    /// Buffers of the near-peak cells, one set per thread.
-    static CELL_SCRATCH: std::cell::RefCell<CellScratch> =
-        std::cell::RefCell::new(CellScratch::default());
-}
-
 multiversion! {
     @on
     /// Ψ at the nodes (x[i], y[i]) from their radial parts (1/k, a, s), for the cos^{2s}
@@ -143,39 +137,8 @@ multiversion! {
 
 impl Kernel {
     /// `0.5 * cell_integral(..)` of every cell of the line that takes a Gauss–Legendre
-    /// rule, at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]`; the midpoint
-    /// cells (far or 1 × 1) are left as they are.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn near_cells_pair_line(
-        &self,
-        freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-    ) {
-        let isa = Isa::detect();
-        CELL_SCRATCH.with(|buffers| match buffers.try_borrow_mut() {
-            Ok(mut scratch) => {
-                self.near_cells_pair_line_on(isa, freq, kx, ky, dkx, dky, pa, pb, &mut scratch)
-            }
-            Err(_) => self.near_cells_pair_line_on(
-                isa,
-                freq,
-                kx,
-                ky,
-                dkx,
-                dky,
-                pa,
-                pb,
-                &mut CellScratch::default(),
-            ),
-        });
-    }
-
-    /// [`Kernel::near_cells_pair_line`] with the directional pass on `isa`.
+    /// rule, at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]`, with the
+    /// directional pass on `isa`; the midpoint cells (far or 1 × 1) are left as they are.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn near_cells_pair_line_on(
         &self,

@@ -579,23 +579,7 @@ impl Kernel {
     }
 
     /// [`Kernel::grid_variance`] at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into
-    /// `pb[j]` for every j, bit for bit, in whole-line passes.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn grid_pair_line(
-        &self,
-        freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-        scratch: &mut GridScratch,
-    ) {
-        self.grid_pair_line_on(Isa::detect(), freq, kx, ky, dkx, dky, pa, pb, scratch);
-    }
-
-    /// [`Kernel::grid_pair_line`] on the given instruction set.
+    /// `pb[j]` for every j, bit for bit, in whole-line passes on `isa`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn grid_pair_line_on(
         &self,
