@@ -156,6 +156,46 @@ pub struct Written {
     pub files: Vec<PathBuf>,
 }
 
+/// The derived fields a synthesis of `params` needs for outputs of these kinds: `maps`
+/// (`None`: a preview, which shades with the slopes) and the `formats` of the height
+/// outputs (meshes take exact spectral slopes where the field is one spectrum and not
+/// resampled).
+fn needed_extras(
+    params: &Params,
+    maps: impl IntoIterator<Item = Option<MapKind>>,
+    formats: &[Format],
+) -> crate::field::dynamics::Extras {
+    let (mut kinds, mut previews) = (Vec::new(), false);
+    for m in maps {
+        match m {
+            Some(kind) => kinds.push(kind),
+            None => previews = true,
+        }
+    }
+    let mut extras = maps::extras_for(&kinds);
+    let meshes = formats.iter().any(|f| f.is_mesh());
+    extras.slopes |= (meshes && crate::render::command::exact_slopes_apply(params)) || previews;
+    extras
+}
+
+/// Whether writing `paths` (as `write_field` takes them) needs derived fields from the
+/// synthesis of `params`, so that a field synthesized without them cannot serve; names
+/// that are not outputs count as not needing any (`write_field` refuses them).
+pub(crate) fn needs_extras(params: &Params, paths: &[PathBuf]) -> bool {
+    let mut maps = Vec::new();
+    let mut formats = Vec::new();
+    for p in paths {
+        if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
+            maps.push(None);
+        } else if let Ok(Some(kind)) = MapKind::from_path(p) {
+            maps.push(Some(kind));
+        } else if let Ok(f) = Format::from_path(p) {
+            formats.push(f);
+        }
+    }
+    needed_extras(params, maps, &formats).any()
+}
+
 /// Synthesizes the field of `params` once and writes it to every path (format by
 /// extension; maps and previews by their `NAME.KIND.ext` names), with the sidecars. Every
 /// file is staged before the work, so a bad path fails first and nothing partial is left.
@@ -246,12 +286,9 @@ pub fn write_field(
         staged_stems.push((Staged::create(side)?, index, outs));
     }
 
-    let kinds: Vec<MapKind> = staged_maps.iter().filter_map(|(_, k)| *k).collect();
-    let mut extras = maps::extras_for(&kinds);
-    // Meshes take exact spectral slopes where the field is one spectrum and not resampled.
+    let extras = needed_extras(params, staged_maps.iter().map(|(_, k)| *k), &formats);
     let exact_slopes = crate::render::command::exact_slopes_apply(params);
-    let meshes = outputs.iter().any(|o| o.format.is_mesh());
-    extras.slopes |= (meshes && exact_slopes) || staged_maps.iter().any(|(_, k)| k.is_none());
+    let meshes = formats.iter().any(|f| f.is_mesh());
     let [nx, ny] = params.grid.size.0;
     crate::guard::check_memory(
         crate::guard::Footprint::of_field(params, extras)
@@ -275,22 +312,11 @@ pub fn write_field(
         });
     let stats = synthesis.grid.stats();
     crate::guard::check_finite(&stats, "the synthesized field")?;
-    let (mapping, source) = match params.output.height_range {
-        Some(r) => (
-            HeightMapping {
-                min_m: r.0[0],
-                max_m: r.0[1],
-            },
-            notes.mapping_source.unwrap_or("--height-range"),
-        ),
-        None => (
-            HeightMapping {
-                min_m: stats.min_m,
-                max_m: stats.max_m,
-            },
-            "field min..max",
-        ),
-    };
+    let (mapping, source) = HeightMapping::choose(
+        params.output.height_range,
+        notes.mapping_source.unwrap_or("--height-range"),
+        || stats,
+    );
     let grid = &synthesis.grid;
 
     // The sidecars and tile indexes describe the outputs' layouts: built before the

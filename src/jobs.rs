@@ -144,22 +144,29 @@ pub struct Progress {
     started: Instant,
 }
 
+/// A progress bar of `len` steps drawn on stderr with the indicatif `template`, hidden
+/// unless `show` and stderr is a terminal.
+pub(crate) fn progress_bar(len: u64, template: &str, show: bool) -> indicatif::ProgressBar {
+    if !show || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let b = indicatif::ProgressBar::new(len);
+    b.set_style(
+        indicatif::ProgressStyle::with_template(template)
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    b
+}
+
 impl Progress {
     /// `unit`: what is counted ("frames", "jobs"). Nothing is shown when `quiet`.
     pub fn new(total: usize, unit: &str, quiet: bool, plain: bool) -> Self {
         let terminal = std::io::stderr().is_terminal();
-        let bar = if quiet || !terminal {
-            indicatif::ProgressBar::hidden()
-        } else {
-            let b = indicatif::ProgressBar::new(total as u64);
-            b.set_style(
-                indicatif::ProgressStyle::with_template(&format!(
-                    "{{bar:40}} {{pos}}/{{len}} {unit}, {{per_sec}}, ETA {{eta}} {{msg}}"
-                ))
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-            );
-            b
-        };
+        let bar = progress_bar(
+            total as u64,
+            &format!("{{bar:40}} {{pos}}/{{len}} {unit}, {{per_sec}}, ETA {{eta}} {{msg}}"),
+            !quiet,
+        );
         Self {
             bar,
             plain: plain && !quiet && !terminal,

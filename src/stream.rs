@@ -10,7 +10,6 @@
 //! min..max (as the in-memory path does), unless a TIFF written first has already seen
 //! them. So a PNG alone costs two passes, or one with `--height-range`.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use anyhow::Result;
@@ -192,18 +191,11 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         && params.output.height_range.is_none()
         && !outputs.iter().any(|(f, _)| *f == Format::Tiff32);
     let passes = outputs.len() + needs_range_pass as usize;
-    let bar = if quiet || !std::io::stderr().is_terminal() {
-        indicatif::ProgressBar::hidden()
-    } else {
-        let b = indicatif::ProgressBar::new((passes * spec.ny) as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{msg} {bar:40} {pos}/{len} rows, {per_sec}, ETA {eta}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    };
+    let bar = crate::jobs::progress_bar(
+        (passes * spec.ny) as u64,
+        "{msg} {bar:40} {pos}/{len} rows, {per_sec}, ETA {eta}",
+        !quiet,
+    );
     let batch = batch_rows(spec.nx);
     let mut stats: Option<Stats> = None;
     if needs_range_pass {
@@ -219,8 +211,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         }
         stats = Some(acc.stats());
     }
-    let mut mapping = None;
-    let mut source = "--height-range";
+    let mut mapping: Option<(HeightMapping, &str)> = None;
     for (format, staged) in outputs {
         let mut acc = Running::default();
         let mut fill = |first: usize, rows: &mut [f32]| {
@@ -235,19 +226,10 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
             }
             _ => {
                 bar.set_message("png");
-                let m = *mapping.get_or_insert_with(|| match params.output.height_range {
-                    Some(r) => HeightMapping {
-                        min_m: r.0[0],
-                        max_m: r.0[1],
-                    },
-                    None => {
-                        source = "field min..max";
-                        let s = stats.expect("a pass has found the range");
-                        HeightMapping {
-                            min_m: s.min_m,
-                            max_m: s.max_m,
-                        }
-                    }
+                let (m, _) = *mapping.get_or_insert_with(|| {
+                    HeightMapping::choose(params.output.height_range, "--height-range", || {
+                        stats.expect("a pass has found the range")
+                    })
                 });
                 staged.write_with(|w| {
                     png16::write_rows(w, (spec.nx, spec.ny), &m, batch, &mut fill)
@@ -269,7 +251,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
             match format {
                 Format::Tiff32 => doc.geotiff = Some(GeoTiffInfo::new(&spec)),
                 _ => {
-                    let range = mapping.expect("PNG outputs have a mapping");
+                    let (range, source) = mapping.expect("PNG outputs have a mapping");
                     doc.mapping = Some(MappingInfo {
                         range,
                         step_m: range.step_m(),
@@ -283,10 +265,13 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
     }
     Ok(crate::app::Written {
         stats,
-        mapping: mapping.unwrap_or(HeightMapping {
-            min_m: stats.min_m,
-            max_m: stats.max_m,
-        }),
+        mapping: mapping.map_or(
+            HeightMapping {
+                min_m: stats.min_m,
+                max_m: stats.max_m,
+            },
+            |(m, _)| m,
+        ),
         has_png: mapping.is_some(),
         files: paths.to_vec(),
     })

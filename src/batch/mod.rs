@@ -413,16 +413,10 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 }
                 // The fields of this run's jobs are kept for writing while they fit in a
                 // quarter of the available memory and 512 MiB; the others are computed again.
-                // (Maps, previews and meshes need derived fields: theirs are recomputed.)
-                let plain = !suffixes
-                    .iter()
-                    .any(|s| s.contains('.') || s == "obj" || s == "glb");
-                let budget = if plain {
-                    (crate::guard::available_memory().ok().flatten().unwrap_or(0) / 4)
-                        .min(KEEP_MAX_BYTES)
-                } else {
-                    0
-                };
+                // (Outputs that need derived fields, such as maps, previews and meshes, are
+                // computed again with them: `write_field` decides, by the same rule.)
+                let budget = (crate::guard::available_memory().ok().flatten().unwrap_or(0) / 4)
+                    .min(KEEP_MAX_BYTES);
                 let reserved = std::sync::atomic::AtomicU64::new(0);
                 let ranges = jobs::run_pool(needs.len(), workers, |i| {
                     let job = needs[i];
@@ -432,6 +426,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     let st = syn.grid.stats();
                     let bytes = syn.grid.data.len() as u64 * 4;
                     let keep = shard.contains(job)
+                        && !crate::app::needs_extras(p, &all[job].paths(&dir, &suffixes))
                         && reserved.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed) + bytes
                             <= budget;
                     if keep {

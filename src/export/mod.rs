@@ -125,6 +125,35 @@ pub struct HeightMapping {
 }
 
 impl HeightMapping {
+    /// The 16-bit mapping of a field and where it came from (for the sidecar): the given
+    /// height range (`range_source`, e.g. "--height-range"), else the field's min..max
+    /// (`field()`, asked for only then).
+    pub fn choose(
+        range: Option<crate::config::Range2>,
+        range_source: &'static str,
+        field: impl FnOnce() -> crate::grid::Stats,
+    ) -> (HeightMapping, &'static str) {
+        match range {
+            Some(r) => (
+                HeightMapping {
+                    min_m: r.0[0],
+                    max_m: r.0[1],
+                },
+                range_source,
+            ),
+            None => {
+                let s = field();
+                (
+                    HeightMapping {
+                        min_m: s.min_m,
+                        max_m: s.max_m,
+                    },
+                    "field min..max",
+                )
+            }
+        }
+    }
+
     /// Meters per 16-bit step.
     pub fn step_m(&self) -> f64 {
         (self.max_m - self.min_m) / 65535.0

@@ -5,7 +5,6 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Result;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::camera::{Camera, View, triple};
 use super::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
@@ -334,19 +333,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ..RenderOptions::new(camera)
     };
     let rays = req.width as u64 * req.height as u64 * req.spp as u64;
-    let bar = if args.quiet || rays < PROGRESS_MIN_RAYS {
-        ProgressBar::hidden()
-    } else {
-        // Drawn only when stderr is a terminal.
-        let bar =
-            ProgressBar::with_draw_target(Some(req.height as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) =
-            ProgressStyle::with_template("rendering {bar:40} {pos}/{len} rows, {eta} left")
-        {
-            bar.set_style(style);
-        }
-        bar
-    };
+    let bar = crate::jobs::progress_bar(
+        req.height as u64,
+        "rendering {bar:40} {pos}/{len} rows, {eta} left",
+        !args.quiet && rays >= PROGRESS_MIN_RAYS,
+    );
     let start = Instant::now();
     let image = super::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
     let seconds = start.elapsed().as_secs_f64();
