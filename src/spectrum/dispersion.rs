@@ -1,6 +1,9 @@
 //! Dispersion relations ω(k): angular frequency (rad/s) of a wave of wavenumber k (rad/m).
+//! tanh is the portable one of `spreading` (fastmath's exp), so finite-depth frequencies
+//! and the time evolution they drive are the same bits on every platform.
 
 use super::G;
+use super::spreading::tanh;
 
 /// How wave frequency depends on wavenumber.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,7 +28,7 @@ impl Dispersion {
     pub fn omega(&self, k: f64) -> f64 {
         match self {
             Dispersion::Deep => (G * k).sqrt(),
-            Dispersion::Finite { depth_m } => (G * k * (k * depth_m).tanh()).sqrt(),
+            Dispersion::Finite { depth_m } => (G * k * tanh(k * depth_m)).sqrt(),
         }
     }
 
@@ -36,7 +39,7 @@ impl Dispersion {
             Dispersion::Deep => 0.5 * (G / k).sqrt(),
             Dispersion::Finite { depth_m } => {
                 let kd = k * depth_m;
-                let t = kd.tanh();
+                let t = tanh(kd);
                 let w = (G * k * t).sqrt();
                 // d(ω²)/dk = g·(tanh kd + kd·sech² kd); dω/dk = that / 2ω.
                 G * (t + kd * (1.0 - t * t)) / (2.0 * w)
@@ -58,7 +61,7 @@ impl Dispersion {
                 // iteration then decreases monotonically to the root.
                 let mut k = deep.max(omega / (G * depth_m).sqrt());
                 for _ in 0..100 {
-                    let t = (k * depth_m).tanh();
+                    let t = tanh(k * depth_m);
                     let f = G * k * t - omega * omega;
                     let df = G * (t + k * depth_m * (1.0 - t * t));
                     let step = f / df;
