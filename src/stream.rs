@@ -180,10 +180,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
 
     let sea = TrochoidSea::new(params)?;
     let frame = sea.frame(params.time_s, Some((spec.dx_m(), spec.dy_m())));
-    let info = SynthesisInfo {
-        trochoid: Some(sea.info().clone()),
-        ..SynthesisInfo::default()
-    };
+    let info = SynthesisInfo::of_trochoid(params, &sea)?;
     // TIFFs first: their pass also finds the range a PNG needs.
     outputs.sort_by_key(|(f, _)| *f != Format::Tiff32);
     let has_png = outputs.iter().any(|(f, _)| *f == Format::Png16);

@@ -200,9 +200,20 @@ fn animation_frames_equal_generate_at_their_time() {
 }
 
 #[test]
-fn the_thon_presets_generate() {
+fn the_thon_presets_generate_seas_of_their_wind_speeds_hs() {
+    // Each preset's sidecar records its Pierson–Moskowitz model's Hs = 4√m0,
+    // m0 = α g²/(5 (2π)⁴ fm⁴), fm = 0.13 g/U10, and Tp = 1/fm; the field's 4·std comes
+    // within HS_TOL of it (one seed on 128²; the trochoids' sharp crests and the fitted
+    // turbulence carry the rest of the variance), and grows with the wind.
+    const HS_TOL: f64 = 0.25;
+    const G: f64 = 9.81;
     let dir = tempfile::tempdir().unwrap();
-    for preset in ["thon-2000", "thon-2000-calm", "thon-2000-storm"] {
+    let mut last = 0.0;
+    for (preset, u10) in [
+        ("thon-2000-calm", 5.0),
+        ("thon-2000", 15.0),
+        ("thon-2000-storm", 25.0),
+    ] {
         let out = format!("{preset}.tif");
         run_ok(
             dir.path(),
@@ -211,7 +222,30 @@ fn the_thon_presets_generate() {
             ],
         );
         let side = json_file(&dir.path().join(format!("{preset}.json")));
-        assert!(num(&side, "/stats/std_m") > 0.0, "{preset}");
+        let fm = 0.13 * G / u10;
+        let m0 = 0.0081 * G * G / (5.0 * (2.0 * std::f64::consts::PI).powi(4) * fm.powi(4));
+        let model = num(&side, "/synthesis/model_hs_m");
+        assert!(
+            (model / (4.0 * m0.sqrt()) - 1.0).abs() < 1e-9,
+            "{preset}: model Hs {model} m, PM gives {}",
+            4.0 * m0.sqrt()
+        );
+        let tp = num(&side, "/synthesis/model_tp_s");
+        assert!(
+            (tp * fm - 1.0).abs() < 1e-9,
+            "{preset}: Tp {tp} s, 1/fm {}",
+            1.0 / fm
+        );
+        let hs = 4.0 * num(&side, "/stats/std_m");
+        assert!(
+            (hs / model - 1.0).abs() < HS_TOL,
+            "{preset}: 4·std = {hs} m against the model's Hs {model} m"
+        );
+        assert!(
+            hs > last,
+            "{preset}: Hs {hs} m not above the calmer preset's {last} m"
+        );
+        last = hs;
     }
 }
 

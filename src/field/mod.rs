@@ -47,6 +47,27 @@ pub struct SynthesisInfo {
     pub trochoid: Option<trochoid::TrochoidInfo>,
 }
 
+impl SynthesisInfo {
+    /// Records the physical model's Hs and Tp (none for Phillips and fractal spectra).
+    fn record_model(&mut self, sea: Option<&SeaModel>) {
+        if let Some(sea) = sea {
+            self.model_hs_m = Some(sea.freq.hs_m());
+            self.model_tp_s = Some(1.0 / sea.freq.peak_hz());
+        }
+    }
+
+    /// What the trochoid method records: its components and fitted turbulence, and the
+    /// physical model's Hs and Tp (the same whether the field is in memory or streamed).
+    pub(crate) fn of_trochoid(params: &Params, sea: &trochoid::TrochoidSea) -> Result<Self> {
+        let mut info = SynthesisInfo {
+            trochoid: Some(sea.info().clone()),
+            ..SynthesisInfo::default()
+        };
+        info.record_model(sea_model(params)?.as_ref());
+        Ok(info)
+    }
+}
+
 /// A computed field and what was learned computing it.
 pub struct Synthesis {
     /// Heights in meters (the choppy surface resampled onto the grid when λ ≠ 0).
@@ -212,10 +233,7 @@ impl Synthesizer {
             }
             // The sea model is built once: its Hs and Tp for the sidecar, then the spectrum.
             let sea = sea_model(params)?;
-            if let Some(sea) = &sea {
-                info.model_hs_m = Some(sea.freq.hs_m());
-                info.model_tp_s = Some(1.0 / sea.freq.peak_hz());
-            }
+            info.record_model(sea.as_ref());
             Some(model_from(params, sea)?)
         } else {
             None
@@ -232,7 +250,7 @@ impl Synthesizer {
             Method::Trochoid => {
                 crate::stream::check_in_memory(params)?;
                 let sea = trochoid::TrochoidSea::new(params)?;
-                info.trochoid = Some(sea.info().clone());
+                info = SynthesisInfo::of_trochoid(params, &sea)?;
                 Some(sea)
             }
             _ => None,
