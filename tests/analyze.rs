@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{json_file, names_in, num, run_ok, run_rejected};
+use common::{analyze_json, json_file, names_in, num, run_ok, run_rejected};
 use std::path::Path;
 
 use seasynth::export::tiff32;
@@ -78,20 +78,6 @@ fn generate(dir: &Path, args: &[&str]) {
     let mut all = vec!["generate", "--quiet"];
     all.extend_from_slice(args);
     run_ok(dir, &all);
-}
-
-/// `analyze FILE --json` in `dir`, parsed; stdout must be exactly one JSON object.
-fn analyze_json(dir: &Path, file: &str) -> Value {
-    let out = run_ok(dir, &["analyze", file, "--json"]);
-    assert_eq!(
-        out.trim_end().lines().count(),
-        1,
-        "one line of JSON:\n{out}"
-    );
-    let doc: Value =
-        serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}):\n{out}"));
-    assert!(doc.is_object(), "one JSON object: {doc}");
-    doc
 }
 
 fn bins(doc: &Value) -> &Vec<Value> {

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{names_in, read, run_ok, seasynth};
+use common::{analyze_json, names_in, read, run_ok, seasynth};
 
 fn bad_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad")
@@ -458,8 +458,7 @@ fn the_largest_common_grid_generates_and_analyzes_to_finite_values() {
             "generate", "--quiet", "--method", "fft", "--size", "16384", "-o", "big.tif",
         ],
     );
-    let json = run_ok(dir.path(), &["analyze", "big.tif", "--json"]);
-    let doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let doc = analyze_json(dir.path(), "big.tif");
     let std = doc["std_m"].as_f64().expect("std_m");
     assert!(std.is_finite() && std > 0.0, "std {std}");
 }

@@ -28,6 +28,20 @@ pub fn run_ok(dir: &Path, args: &[&str]) -> String {
     String::from_utf8(out.stdout).expect("stdout is UTF-8")
 }
 
+/// `analyze FILE --json` in `dir`, parsed; stdout must be exactly one JSON object.
+pub fn analyze_json(dir: &Path, file: &str) -> Value {
+    let out = run_ok(dir, &["analyze", file, "--json"]);
+    assert_eq!(
+        out.trim_end().lines().count(),
+        1,
+        "one line of JSON:\n{out}"
+    );
+    let doc: Value =
+        serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}):\n{out}"));
+    assert!(doc.is_object(), "one JSON object: {doc}");
+    doc
+}
+
 /// Runs `seasynth ARGS` in `dir`, expects exit code 2 and nothing on stdout; returns stderr.
 pub fn run_exit2(dir: &Path, args: &[&str]) -> String {
     let out = seasynth()
