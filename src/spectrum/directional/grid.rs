@@ -19,10 +19,10 @@
 //! Every pass is written once per lane ([`fast_lane`], [`value`]) and used both by the
 //! scalar function ([`Kernel::grid_variance`]) and by the line passes (compiled for the
 //! baseline, AVX2 and AVX-512 by `lines::multiversion`), so a line equals the single
-//! values bit for bit. The single-precision exponent carries a relative error of about
-//! 1e-7·(1 + |exponent|) into P, where the exponent is log2 of P relative to the peak
-//! cell (so ~1e-7 at the peak, ~1e-6 twenty octaves below it), against the double-precision
-//! Ψ (tested); P below 2^−300 of the peak cell is 0.
+//! values bit for bit. Against the double-precision Ψ, P is within 1e-6·(1 + |exponent|)
+//! relative, where the exponent is log2 of P relative to the peak cell (tested: worst
+//! 4.4e-7·(1 + |exponent|) over every model and spreading, ~1e-7 at the peak); P below
+//! 2^−300 of the peak cell is 0.
 
 use super::line::{RadialLine, RadialScratch};
 use super::{FrequencySpectrum, G, Kernel, PI, SpreadKind, U_MAX, half_one_plus_f32, power_f32};
