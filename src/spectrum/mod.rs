@@ -12,6 +12,7 @@ pub mod fractal;
 pub mod frequency;
 #[cfg(test)]
 mod invariants;
+pub(crate) mod mirror;
 pub mod phillips;
 pub mod spreading;
 

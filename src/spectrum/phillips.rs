@@ -8,7 +8,8 @@
 
 use super::{G, Spectrum};
 use crate::fastmath;
-use crate::field::lines::exp_line;
+use crate::field::lines::{Isa, exp_line};
+use crate::spectrum::mirror::{fft_mirrored, mirror_f64_on};
 
 /// A validated Phillips spectrum.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,29 +56,50 @@ impl Phillips {
     }
 }
 
-impl Spectrum for Phillips {
-    fn amplitude_variance(&self, kx: f64, ky: f64, _dkx: f64, _dky: f64) -> f64 {
-        self.value(kx, ky)
-    }
+/// The exponentials of a line (see [`Phillips::line`]).
+#[derive(Debug, Default)]
+struct LineScratch {
+    arg: Vec<f64>,
+    e1: Vec<f64>,
+    e2: Vec<f64>,
+}
 
-    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
-        // The same operations as `value`, in passes that vectorize: the exponents, the
-        // exponentials, then the products in `value`'s order.
-        let n = ky.len();
-        let mut arg = vec![0.0; n];
-        let mut e1 = vec![0.0; n];
-        for (a, &y) in arg.iter_mut().zip(ky) {
+thread_local! {
+    /// Buffers of the line evaluation, one set per thread.
+    static SCRATCH: std::cell::RefCell<LineScratch> =
+        std::cell::RefCell::new(LineScratch::default());
+}
+
+impl Phillips {
+    /// P over a line: the same operations as [`Phillips::value`], in passes that
+    /// vectorize: the exponents and exponentials once per distinct k² (a line in FFT order
+    /// repeats them mirrored), then the products in `value`'s order.
+    fn line(&self, kx: f64, ky: &[f64], out: &mut [f64], s: &mut LineScratch) {
+        let n = ky.len().min(out.len());
+        let (ky, out) = (&ky[..n], &mut out[..n]);
+        let isa = Isa::detect();
+        let unique = if fft_mirrored(ky) { n / 2 + 1 } else { n };
+        let LineScratch { arg, e1, e2 } = s;
+        for v in [&mut *arg, &mut *e1, &mut *e2] {
+            v.resize(n, 0.0);
+        }
+        for (a, &y) in arg[..unique].iter_mut().zip(ky) {
             let k2 = kx * kx + y * y;
             *a = -1.0 / (k2 * self.big_l_m * self.big_l_m);
         }
-        exp_line(&arg, &mut e1);
-        let mut e2 = vec![1.0; n];
+        exp_line(&arg[..unique], &mut e1[..unique]);
         if self.small_l_m > 0.0 {
-            for (a, &y) in arg.iter_mut().zip(ky) {
+            for (a, &y) in arg[..unique].iter_mut().zip(ky) {
                 let k2 = kx * kx + y * y;
                 *a = -k2 * self.small_l_m * self.small_l_m;
             }
-            exp_line(&arg, &mut e2);
+            exp_line(&arg[..unique], &mut e2[..unique]);
+        } else {
+            e2[..unique].fill(1.0);
+        }
+        if unique < n {
+            mirror_f64_on(isa, e1, unique);
+            mirror_f64_on(isa, e2, unique);
         }
         for (i, (o, &y)) in out.iter_mut().zip(ky).enumerate() {
             let k2 = kx * kx + y * y;
@@ -85,6 +107,19 @@ impl Spectrum for Phillips {
             let v = self.a * e1[i] / (k2 * k2) * (cos * cos) * e2[i];
             *o = if k2 == 0.0 { 0.0 } else { v };
         }
+    }
+}
+
+impl Spectrum for Phillips {
+    fn amplitude_variance(&self, kx: f64, ky: f64, _dkx: f64, _dky: f64) -> f64 {
+        self.value(kx, ky)
+    }
+
+    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
+        SCRATCH.with(|cell| match cell.try_borrow_mut() {
+            Ok(mut scratch) => self.line(kx, ky, out, &mut scratch),
+            Err(_) => self.line(kx, ky, out, &mut LineScratch::default()),
+        });
     }
 
     /// P(−k) = P(k) exactly: k² is the same and cos changes sign only, so its square is
@@ -127,10 +162,22 @@ mod tests {
 
     #[test]
     fn the_line_evaluation_equals_the_single_values_bit_for_bit() {
+        // A plain line, and lines in FFT order (even and odd lengths), whose mirrored half
+        // reuses the exponentials.
+        let plain: Vec<f64> = (-40..40).map(|m| (m as f64 + 0.3) * 0.0123).collect();
+        let fft = |n: usize| -> Vec<f64> {
+            (0..n)
+                .map(|j| crate::field::fft::signed_index(j, n) as f64 * 0.0123)
+                .collect()
+        };
+        let mirrored = crate::spectrum::mirror::fft_mirrored;
+        assert!(mirrored(&fft(64)) && mirrored(&fft(63)) && !mirrored(&plain));
         for l in [0.0, 0.7] {
             let p = Phillips::new(3e-7, 13.0, 0.9, l);
-            let ky: Vec<f64> = (-40..40).map(|m| m as f64 * 0.0123).collect();
-            for kx in [0.0, 0.0123, -0.5, 3.0] {
+            for (ky, kx) in [plain.clone(), fft(64), fft(63), fft(2)]
+                .into_iter()
+                .flat_map(|ky| [0.0, 0.0123, -0.5, 3.0].map(|kx| (ky.clone(), kx)))
+            {
                 let mut out = vec![0.0; ky.len()];
                 p.amplitude_variance_line(kx, &ky, 0.0, 0.0, &mut out);
                 for (i, (&o, &y)) in out.iter().zip(&ky).enumerate() {

@@ -31,6 +31,7 @@ use crate::fastmath::{
     scale_f64,
 };
 use crate::field::lines::{Isa, multiversion};
+use crate::spectrum::mirror::{fft_mirrored, mirror_f32_on, mirror_f64_on};
 use crate::spectrum::spreading::log2_np_f32;
 
 const LOG2_E: f64 = std::f64::consts::LOG2_E;
@@ -457,47 +458,6 @@ pub(super) struct ValueBuffers {
     e: Vec<i32>,
 }
 
-/// `dst[i] = src[len − 1 − i]`, in blocks of 16 (a load, a permutation and a store each).
-#[inline(always)]
-fn reverse_copy<T: Copy + Default>(src: &[T], dst: &mut [T]) {
-    const B: usize = 16;
-    let m = dst.len().min(src.len());
-    let (src, dst) = (&src[..m], &mut dst[..m]);
-    let mut blocks = dst.chunks_exact_mut(B);
-    for (d, s) in (&mut blocks).zip(src.rchunks_exact(B)) {
-        let mut a = [T::default(); B];
-        a.copy_from_slice(s);
-        a.reverse();
-        d.copy_from_slice(&a);
-    }
-    let rest = m % B;
-    let d = blocks.into_remainder();
-    for k in 0..rest {
-        d[k] = src[rest - 1 - k];
-    }
-}
-
-multiversion! {
-    @on
-    /// `v[j] = v[n − j]` for j = h..n, n = v.len() (the mirrored half of a line in FFT
-    /// order from its first h entries).
-    fn mirror_f32_on(isa: Isa, v: &mut [f32], h: usize) {
-        let (src, dst) = v.split_at_mut(h);
-        let m = dst.len();
-        reverse_copy::<f32>(&src[1..=m], dst);
-    }
-}
-
-multiversion! {
-    @on
-    /// [`mirror_f32_on`] for doubles.
-    fn mirror_f64_on(isa: Isa, v: &mut [f64], h: usize) {
-        let (src, dst) = v.split_at_mut(h);
-        let m = dst.len();
-        reverse_copy::<f64>(&src[1..=m], dst);
-    }
-}
-
 /// Buffers of the grid passes, one set per thread.
 #[derive(Debug, Default)]
 pub(super) struct GridScratch {
@@ -608,14 +568,7 @@ impl Kernel {
             values,
         } = scratch;
         // FFT order: ky[n − j] = −ky[j], so entries j and n − j share k².
-        let mirrored = n >= 2 && {
-            let h = n.div_ceil(2);
-            // (A fold without early exit, which vectorizes.)
-            ky[1..h]
-                .iter()
-                .zip(ky[n + 1 - h..].iter().rev())
-                .fold(true, |ok, (&a, &b)| ok & (b == -a))
-        };
+        let mirrored = fft_mirrored(ky);
         let unique = if mirrored { n / 2 + 1 } else { n };
         k2.clear();
         k2.extend(ky[..unique].iter().map(|&y| kx * kx + y * y));
