@@ -4,7 +4,7 @@
 //! cells: P = ½·dkx·dky·a(|k|)·m(θ)·cos^{2s}(θ/2). Here each is computed as one power of
 //! two, P = 2^(n₀ + l + s·log2((1 + c)/2))·m with c = cos θ:
 //! - n₀ (an integer, per grid) and the constant in l put the exponent of the grid's peak
-//!   cell near 0, so that the single-precision exponent keeps ~1e-7 relative precision
+//!   cell near 0, so that the single-precision exponent keeps its relative precision
 //!   where the energy is ([`Kernel::grid_scale`]);
 //! - l(|k|) = log2(½·dkx·dky·a) − n₀ and s(|k|) come once per distinct k² (k and −k share
 //!   them, and so do ky and −ky of a line in FFT order). For deep water, the JONSWAP family
@@ -21,8 +21,10 @@
 //! baseline, AVX2 and AVX-512 by `lines::multiversion`), so a line equals the single
 //! values bit for bit. Against the double-precision Ψ, P is within 1e-6·(1 + |exponent|)
 //! relative, where the exponent is log2 of P relative to the peak cell (tested: worst
-//! 4.4e-7·(1 + |exponent|) over every model and spreading, ~1e-7 at the peak); P below
-//! 2^−300 of the peak cell is 0.
+//! 7.9e-7·(1 + |exponent|) over every model and spreading; within an octave of the peak
+//! ~1e-7 for the seas on the double-precision radial part, up to 5e-7 for PM and 1.4e-6
+//! for JONSWAP γ = 7 on the single-precision lane, whose exponent sums several terms of
+//! a few units each); P below 2^−300 of the peak cell is 0.
 
 use super::line::{RadialLine, RadialScratch};
 use super::{FrequencySpectrum, G, Kernel, PI, SpreadKind, U_MAX, half_one_plus_f32, power_f32};
@@ -73,8 +75,8 @@ pub(super) struct FastRadial {
 
 impl FastRadial {
     /// The fast lane's constants, if this kernel's sea is one it covers (see the module
-    /// docs); `l0` is the grid reference ([`Kernel::grid_l0`]).
-    pub(super) fn new(kern: &Kernel, l0: f64) -> Option<FastRadial> {
+    /// docs), relative to its grid reference [`Kernel::grid_l0`].
+    pub(super) fn new(kern: &Kernel) -> Option<FastRadial> {
         let sh = kern.shape.as_ref()?;
         let exact = &kern.table.exact;
         let family = match kern.kind {
@@ -96,7 +98,7 @@ impl FastRadial {
         Some(FastRadial {
             c_v,
             c_v32: c_v as f32,
-            base: base - l0,
+            base: base - kern.grid_l0,
             ln_gamma2: (sh.ln_gamma * LOG2_E) as f32,
             c_low2: (super::C_LOW * LOG2_E) as f32,
             c_high2: (super::C_HIGH * LOG2_E) as f32,
