@@ -128,10 +128,10 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     // kept for the whole sequence (16 bytes a sample, measured).
     let n = params.grid_spec().len() as u64;
     let per_frame =
-        crate::guard::Footprint::of_field(&params, extras).with_outputs(kinds.len() as u64);
+        crate::pipeline::memory::Footprint::of_field(&params, extras).with_outputs(kinds.len() as u64);
     let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 1));
     let [nx, ny] = params.grid.size.0;
-    crate::guard::check_memory(
+    crate::limits::check_memory(
         per_frame.bytes(n, jobs as u64).saturating_add(16 * n),
         &format!("{jobs} {nx}x{ny} {} frame(s) at once", params.method.name()),
         args.field.force,
@@ -238,7 +238,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             staged.push((kind, Staged::create(&frame_path(&args.dir, k, kind))?));
         }
         let syn: Synthesis = synth.frame(time_of(k));
-        crate::guard::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
+        crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
         for (kind, st) in staged {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,

@@ -290,8 +290,8 @@ pub fn write_field(
     let exact_slopes = crate::render::command::exact_slopes_apply(params);
     let meshes = formats.iter().any(|f| f.is_mesh());
     let [nx, ny] = params.grid.size.0;
-    crate::guard::check_memory(
-        crate::guard::Footprint::of_field(params, extras)
+    crate::limits::check_memory(
+        crate::pipeline::memory::Footprint::of_field(params, extras)
             .with_outputs(staged_maps.len() as u64 + meshes as u64)
             .bytes(spec.len() as u64, 1),
         &format!("a {nx}x{ny} {} field", params.method.name()),
@@ -311,7 +311,7 @@ pub fn write_field(
             dhdy: y.clone(),
         });
     let stats = synthesis.grid.stats();
-    crate::guard::check_finite(&stats, "the synthesized field")?;
+    crate::limits::check_finite(&stats, "the synthesized field")?;
     let (mapping, source) = HeightMapping::choose(
         params.output.height_range,
         notes.mapping_source.unwrap_or("--height-range"),

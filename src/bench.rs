@@ -153,8 +153,8 @@ pub fn run(args: BenchArgs) -> Result<()> {
             },
             ..params
         };
-        crate::guard::check_memory(
-            crate::guard::Footprint::of_field(&choppy, all)
+        crate::limits::check_memory(
+            crate::pipeline::memory::Footprint::of_field(&choppy, all)
                 .with_outputs(2)
                 .bytes((n * n) as u64, 1),
             &format!("benchmarking {n}x{n}"),

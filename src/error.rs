@@ -35,8 +35,8 @@ pub enum Error {
     /// A run refused before the work: its estimated peak memory exceeds what is available.
     #[error(
         "{what} needs about {} of memory but {} is available: use a smaller --size, --method trochoid (streams any size), or --force to run anyway",
-        crate::guard::human_bytes(*needed_bytes),
-        crate::guard::human_bytes(*available_bytes)
+        crate::units::human_bytes(*needed_bytes),
+        crate::units::human_bytes(*available_bytes)
     )]
     Memory {
         what: String,

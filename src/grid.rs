@@ -150,6 +150,25 @@ impl Stats {
     }
 }
 
+/// Signed wavevector index of FFT bin `idx` of a transform of length `len`.
+#[inline]
+pub fn signed_index(idx: usize, len: usize) -> i64 {
+    if idx < len.div_ceil(2) {
+        idx as i64
+    } else {
+        idx as i64 - len as i64
+    }
+}
+
+/// True when the wavevector `(n, m)` takes part in the synthesis (DC and the Nyquist lines are left out: see `field::fft`).
+#[inline]
+pub fn is_resolved(n: i64, m: i64, nx: usize, ny: usize) -> bool {
+    let nyquist_x = nx % 2 == 0 && n.unsigned_abs() as usize == nx / 2;
+    let nyquist_y = ny % 2 == 0 && m.unsigned_abs() as usize == ny / 2;
+    let dc = n == 0 && m == 0;
+    !(dc || nyquist_x || nyquist_y)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -64,7 +64,7 @@ impl FileKind {
 }
 
 /// A peak-memory estimate of computing and writing one field of `params` with `maps`
-/// derived maps, bytes ([`crate::guard::Footprint`], with every derived field when there
+/// derived maps, bytes ([`crate::pipeline::memory::Footprint`], with every derived field when there
 /// is a map).
 pub fn field_bytes(params: &Params, maps: usize) -> u64 {
     let all = crate::field::dynamics::Extras {
@@ -73,7 +73,7 @@ pub fn field_bytes(params: &Params, maps: usize) -> u64 {
         jacobian: true,
     };
     let extras = if maps > 0 { all } else { Default::default() };
-    crate::guard::Footprint::of_field(params, extras)
+    crate::pipeline::memory::Footprint::of_field(params, extras)
         .with_outputs(maps as u64)
         .bytes(params.grid_spec().len() as u64, 1)
 }
@@ -82,7 +82,7 @@ pub fn field_bytes(params: &Params, maps: usize) -> u64 {
 /// as many as fit twice into the available memory by the estimate `per_job_bytes`, and at
 /// least one.
 pub fn parallel_jobs(requested: Option<usize>, per_job_bytes: u64) -> usize {
-    let by_memory = crate::guard::available_memory()
+    let by_memory = crate::limits::available_memory()
         .ok()
         .flatten()
         .map(|m| (m / 2 / per_job_bytes.max(1)).max(1) as usize)
@@ -232,7 +232,7 @@ mod tests {
             "huge jobs: one at a time"
         );
         assert_eq!(parallel_jobs(Some(0), 1), 1, "at least one");
-        if let Ok(Some(m)) = crate::guard::available_memory() {
+        if let Ok(Some(m)) = crate::limits::available_memory() {
             assert_eq!(
                 parallel_jobs(Some(8), m / 5),
                 2,

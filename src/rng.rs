@@ -80,7 +80,7 @@ pub fn gaussian_polar(seed: u64, n: i64, m: i64) -> (f64, f64) {
     polar_from_units(u1, u2)
 }
 
-// The parts of `gaussian_polar`, for the line kernels of `crate::field::lines` (which
+// The parts of `gaussian_polar`, for the line kernels of `crate::simd` (which
 // repeat `polar_units_from_word` in AVX2 instructions, and are tested to agree bit for bit).
 
 /// The hash state of [`gaussian_polar`] after the words `(seed, n)`, which all the draws of

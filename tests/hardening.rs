@@ -474,7 +474,7 @@ fn a_run_that_needs_more_memory_than_available_is_refused_with_the_options_unles
         let dir = tempfile::tempdir().unwrap();
         let out = seasynth()
             .current_dir(dir.path())
-            .env(seasynth::guard::MEMORY_ENV, "1M")
+            .env(seasynth::limits::MEMORY_ENV, "1M")
             .args(*args)
             .output()
             .unwrap();
@@ -497,7 +497,7 @@ fn a_run_that_needs_more_memory_than_available_is_refused_with_the_options_unles
         forced.extend(["--force", "--quiet"]);
         let out = seasynth()
             .current_dir(dir.path())
-            .env(seasynth::guard::MEMORY_ENV, "1M")
+            .env(seasynth::limits::MEMORY_ENV, "1M")
             .args(&forced)
             .output()
             .unwrap();

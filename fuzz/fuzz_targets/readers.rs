@@ -16,7 +16,7 @@ fn dir() -> &'static PathBuf {
     DIR.get_or_init(|| {
         // Headers may declare huge images: the readers refuse those beyond this.
         // SAFETY: set once, before any other thread reads the environment.
-        unsafe { std::env::set_var(seasynth::guard::MEMORY_ENV, "256M") };
+        unsafe { std::env::set_var(seasynth::limits::MEMORY_ENV, "256M") };
         let d = std::env::temp_dir().join(format!("seasynth-fuzz-{}", std::process::id()));
         std::fs::create_dir_all(&d).expect("temporary folder");
         d

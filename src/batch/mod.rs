@@ -415,7 +415,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 // quarter of the available memory and 512 MiB; the others are computed again.
                 // (Outputs that need derived fields, such as maps, previews and meshes, are
                 // computed again with them: `write_field` decides, by the same rule.)
-                let budget = (crate::guard::available_memory().ok().flatten().unwrap_or(0) / 4)
+                let budget = (crate::limits::available_memory().ok().flatten().unwrap_or(0) / 4)
                     .min(KEEP_MAX_BYTES);
                 let reserved = std::sync::atomic::AtomicU64::new(0);
                 let ranges = jobs::run_pool(needs.len(), workers, |i| {

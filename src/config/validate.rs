@@ -6,7 +6,7 @@ use crate::error::ParamError;
 
 /// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
 pub const MAX_SIDE: usize = 1 << 16;
-pub const MAX_SAMPLES: usize = 1 << 30;
+pub use crate::limits::MAX_SAMPLES;
 
 fn err(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
     ParamError {

@@ -97,7 +97,7 @@ pub fn read(path: &std::path::Path) -> std::io::Result<(usize, usize, Vec<u16>)>
         .read_info()
         .map_err(std::io::Error::other)?;
     let (w, h) = reader.info().size();
-    crate::guard::check_image_size(w as u64, h as u64, 2).map_err(std::io::Error::other)?;
+    crate::limits::check_image_size(w as u64, h as u64, 2).map_err(std::io::Error::other)?;
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| std::io::Error::other("PNG too large"))?;

@@ -143,7 +143,7 @@ pub fn read(path: &std::path::Path) -> std::io::Result<(usize, usize, Vec<f32>)>
     // (256 MiB) would refuse fields above 8192², so it becomes at most four 32-bit floats
     // per pixel (the RGB displacement maps have three): more channels or wider samples
     // (found by fuzzing: a header asking for 12.9 GB) are refused by the decoder.
-    crate::guard::check_image_size(w as u64, h as u64, 4).map_err(std::io::Error::other)?;
+    crate::limits::check_image_size(w as u64, h as u64, 4).map_err(std::io::Error::other)?;
     let four_channels = (w as usize).saturating_mul(h as usize).saturating_mul(16);
     let mut limits = tiff::decoder::Limits::default();
     limits.decoding_buffer_size = four_channels;

@@ -488,7 +488,7 @@ pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 
 /// by its length (a few f32 rounding errors of components ≤ 1).
 pub const NORMAL_F32_TOL: f64 = 1e-6;
 
-crate::field::lines::multiversion! {
+crate::simd::multiversion! {
     /// λ = 0: the normal (−hx, −hy, 1)/√(1 + hx² + hy²).
     fn still_normals(hx: &[f32], hy: &[f32], out: &mut [[f32; 3]]) {
         for ((o, &x), &y) in out.iter_mut().zip(hx).zip(hy) {
@@ -498,7 +498,7 @@ crate::field::lines::multiversion! {
     }
 }
 
-crate::field::lines::multiversion! {
+crate::simd::multiversion! {
     /// The normal of the tangents (1 + a, c, hx) × (c, 1 + b, hy), (0, 0, 1) where they
     /// are parallel.
     fn choppy_normals(hx: &[f32], hy: &[f32], d: [&[f32]; 3], out: &mut [[f32; 3]]) {

@@ -4,7 +4,6 @@ pub mod dynamics;
 pub mod fft;
 pub mod filtered_noise;
 pub mod hybrid;
-pub mod lines;
 pub mod noise3;
 pub mod perlin;
 pub mod trochoid;
@@ -190,7 +189,7 @@ fn model_from(params: &Params, sea: Option<SeaModel>) -> Result<(Box<dyn Spectru
 /// Computes the field that validated `params` describe.
 pub fn synthesize(params: &Params) -> Result<Synthesis> {
     let s = Synthesizer::new(params, dynamics::Extras::default(), false)?.frame(params.time_s);
-    crate::guard::check_finite(&s.grid.stats(), "the synthesized field")?;
+    crate::limits::check_finite(&s.grid.stats(), "the synthesized field")?;
     Ok(s)
 }
 

@@ -19,7 +19,7 @@
 //! depend on the processor). A single point is a row of one sample: [`noise`] gives the
 //! very bits [`add_row`] gives at that point.
 
-use crate::field::lines::{Isa, multiversion};
+use crate::simd::{Isa, multiversion};
 
 /// The 16 gradients (x, y, z components): the 12 cube edges, then (1,1,0), (−1,1,0),
 /// (0,−1,1), (0,−1,−1) again.

@@ -113,7 +113,7 @@ pub fn read_gray(path: &Path) -> Result<GrayImage> {
         .read_info()
         .map_err(|e| bad(format!("not a readable PNG: {e}")))?;
     let (w, h) = reader.info().size();
-    crate::guard::check_image_size(w as u64, h as u64, 8).map_err(&bad)?;
+    crate::limits::check_image_size(w as u64, h as u64, 8).map_err(&bad)?;
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| bad("PNG dimensions too large".into()))?;

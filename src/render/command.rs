@@ -249,7 +249,7 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
     let Some(from) = &args.from else {
         let params = crate::app::resolve_params(&args.field)?;
         let [nx, ny] = params.grid.size.0;
-        crate::guard::check_memory(
+        crate::limits::check_memory(
             footprint(&params).bytes(params.grid_spec().len() as u64, 1),
             &format!("rendering a {nx}x{ny} {} field", params.method.name()),
             args.field.force,
@@ -392,9 +392,9 @@ pub fn exact_slopes_apply(params: &Params) -> bool {
 /// Peak memory of rendering a synthesized field of `params`: the larger of the synthesis
 /// and the render's own buffers (the field, its slopes, the mean and max pyramids:
 /// 35 bytes a sample measured, 44 counted).
-fn footprint(params: &crate::config::Params) -> crate::guard::Footprint {
-    let synthesis = crate::guard::Footprint::of_field(params, Default::default());
-    crate::guard::Footprint {
+fn footprint(params: &crate::config::Params) -> crate::pipeline::memory::Footprint {
+    let synthesis = crate::pipeline::memory::Footprint::of_field(params, Default::default());
+    crate::pipeline::memory::Footprint {
         per_sample: synthesis.per_sample.max(44),
         ..synthesis
     }

@@ -835,7 +835,7 @@ impl Spectrum for DirectionalSpectrum {
     ) {
         let n = ky.len().min(pa.len()).min(pb.len());
         let (ky, pa, pb) = (&ky[..n], &mut pa[..n], &mut pb[..n]);
-        let isa = crate::field::lines::Isa::detect();
+        let isa = crate::simd::Isa::detect();
         let freq = self.freq.as_ref();
         let mut line = |scratch: &mut LineScratch| {
             let kern = &self.kern;
@@ -1438,7 +1438,7 @@ mod tests {
                 let plain: Vec<f64> = (0..n).map(|j| (j as f64 - 20.0) * 0.9 * dk).collect();
                 for ky in [&fft, &plain] {
                     for kx in [0.0, 3.0 * dk, -11.0 * dk, 40.0 * dk] {
-                        for isa in crate::field::lines::Isa::available() {
+                        for isa in crate::simd::Isa::available() {
                             let (mut pa, mut pb) = (vec![0.0; n], vec![0.0; n]);
                             let mut scratch = grid::GridScratch::default();
                             s.kern.grid_pair_line_on(
@@ -1471,7 +1471,7 @@ mod tests {
 
     #[test]
     fn batched_near_peak_cells_equal_the_cell_rule_bit_for_bit_on_every_instruction_set() {
-        use crate::field::lines::Isa;
+        use crate::simd::Isa;
         // Lines of a grid whose peak spans 4.5 cells (kx from 0 to beyond the near zone, ky
         // in FFT order and in a line without mirrored entries, odd and even lengths), and
         // of a grid so fine (kp = 600 Δk) that cells at the peak take the midpoint.

@@ -2,7 +2,7 @@
 //! k² and whatever depends on it alone, computed for the first n/2 + 1 entries and
 //! mirrored.
 
-use crate::field::lines::multiversion;
+use crate::simd::multiversion;
 
 /// True if `ky` is in FFT order (ky[n − j] = −ky[j] for 0 < j < n/2), so that its entries
 /// j ≥ n/2 + 1 repeat the k² of entries n − j.

@@ -8,7 +8,7 @@
 
 use super::{G, Spectrum};
 use crate::fastmath;
-use crate::field::lines::{Isa, exp_line};
+use crate::simd::{Isa, exp_line};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f64_on};
 
 /// A validated Phillips spectrum.

@@ -34,7 +34,7 @@ use serde::Serialize;
 use crate::config::{Params, SpectrumModel};
 use crate::error::Result;
 use crate::field::fft::SpectrumSetup;
-use crate::field::lines::{Isa, multiversion};
+use crate::simd::{Isa, multiversion};
 use crate::field::noise3;
 use crate::grid::{Grid, GridSpec};
 use crate::rng::{self, Stream, sub_seed};

@@ -10,7 +10,7 @@
 //! nodes are laid out so that a block and its mirror image list the same k² in the same
 //! order, and a block reuses its image's radial parts only where all of them are equal
 //! bit for bit), their directional parts from
-//! a pass compiled for each instruction set (`lines::multiversion`) with `fastmath`'s
+//! a pass compiled for each instruction set (`simd::multiversion`) with `fastmath`'s
 //! branch-free ln and exp, whose flagged lanes the scalar [`Kernel::angular`] redoes.
 //! Each cell's sum is then formed exactly as `cell_integral` forms it, so every value
 //! equals `0.5 * cell_integral(..)` bit for bit. Cells whose rule is the midpoint (1 × 1)
@@ -23,7 +23,7 @@
 use super::line::{RadialLine, RadialScratch};
 use super::{FrequencySpectrum, Kernel, POWER_EXPONENT_MIN, Radial, SpreadKind, half_one_plus};
 use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
-use crate::field::lines::{Isa, multiversion};
+use crate::simd::{Isa, multiversion};
 
 /// Line entries tested together for a near cell.
 const BLOCK: usize = 32;

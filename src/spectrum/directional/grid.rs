@@ -18,7 +18,7 @@
 //!
 //! Every pass is written once per lane ([`fast_lane`], [`value`]) and used both by the
 //! scalar function ([`Kernel::grid_variance`]) and by the line passes (compiled for the
-//! baseline, AVX2 and AVX-512 by `lines::multiversion`), so a line equals the single
+//! baseline, AVX2 and AVX-512 by `simd::multiversion`), so a line equals the single
 //! values bit for bit. Against the double-precision Ψ, P is within 1e-6·(1 + |exponent|)
 //! relative, where the exponent is log2 of P relative to the peak cell (tested: worst
 //! 7.9e-7·(1 + |exponent|) over every model and spreading; within an octave of the peak
@@ -32,7 +32,7 @@ use crate::fastmath::{
     exp2_f32, exp2_parts_f32, ln, ln_is_special, ln_positive_normal, log2_f32, log2_unit_f32,
     scale_f64,
 };
-use crate::field::lines::{Isa, multiversion};
+use crate::simd::{Isa, multiversion};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f32_on, mirror_f64_on};
 use crate::spectrum::spreading::log2_np_f32;
 

@@ -1,7 +1,7 @@
 //! The double-precision radial part of Ψ for a whole line of wavevectors, in passes the
 //! compiler vectorizes: the same operations as [`Kernel::radial`], in the same order, on
 //! arrays (for the seas the grid's single-precision lane does not cover, see `grid`).
-//! Each pass is compiled for the baseline, AVX2 and AVX-512 (`lines::multiversion`), uses
+//! Each pass is compiled for the baseline, AVX2 and AVX-512 (`simd::multiversion`), uses
 //! `fastmath`'s branch-free cores, and flags lanes outside their fast range, which the
 //! scalar function then redoes; so every value equals the scalar one bit for bit.
 
@@ -10,7 +10,7 @@ use super::{
     U_MAX, kitaigorodskii, tanh,
 };
 use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
-use crate::field::lines::multiversion;
+use crate::simd::multiversion;
 
 /// Largest γ-exponent argument the fast path takes (the scalar path uses exp(−a) up to
 /// 700; the lanes in between are redone by it).

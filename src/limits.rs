@@ -1,17 +1,19 @@
-//! Guards around a run: the memory it will need, checked before any work, and the
-//! finiteness of what it computed, checked before anything is written.
+//! Limits of a run: the memory available, checked before any work; the size an image
+//! declares, checked before its pixels are read; and the finiteness of what was
+//! computed, checked before anything is written.
 //!
-//! Memory: each command estimates its peak as bytes per grid sample ([`Footprint`]) times
-//! the samples, plus fixed buffers, and refuses when that exceeds the memory available
-//! (`MemAvailable` of `/proc/meminfo`), unless `--force` is given. The environment
-//! variable `SEASYNTH_MEMORY_AVAILABLE` (bytes, or with a K/M/G/T suffix, powers of 1024)
-//! replaces the figure of `/proc/meminfo`, for tests and for machines whose limit is not
-//! the system's (a container's memory limit).
+//! Memory: each command estimates its peak (see `pipeline::memory::Footprint`) and refuses
+//! when that exceeds the memory available (`MemAvailable` of `/proc/meminfo`), unless
+//! `--force` is given. The environment variable `SEASYNTH_MEMORY_AVAILABLE` (bytes, or
+//! with a K/M/G/T suffix, powers of 1024) replaces the figure of `/proc/meminfo`, for
+//! tests and for machines whose limit is not the system's (a container's memory limit).
 
-use crate::config::{Method, Params};
 use crate::error::Error;
-use crate::field::dynamics::Extras;
 use crate::grid::Stats;
+use crate::units::human_bytes;
+
+/// Samples of one field, at most (2³⁰: 4 GiB of f32 heights).
+pub const MAX_SAMPLES: usize = 1 << 30;
 
 /// The variable that replaces `MemAvailable` (see the module docs).
 pub const MEMORY_ENV: &str = "SEASYNTH_MEMORY_AVAILABLE";
@@ -58,64 +60,6 @@ fn meminfo_available() -> Option<u64> {
     Some(kb * 1024)
 }
 
-/// Peak memory of one field's synthesis and export, as bytes per grid sample plus a
-/// fixed part. The figures are measured peaks (maximum resident set, `/usr/bin/time -v`)
-/// of `generate` between 2048² and 4096², plus about a quarter: 8 bytes a sample for
-/// the height field and its transform, 12 for `hybrid`, 8 more for choppy waves; see the
-/// README's Guarantees section.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Footprint {
-    pub per_sample: u64,
-    pub fixed: u64,
-}
-
-/// Bytes that do not grow with the grid (code, thread stacks, writer buffers).
-const FIXED_BYTES: u64 = 64 << 20;
-
-/// Bytes a sample of one derived 32-bit field (a slope, a displacement, the Jacobian), or
-/// of one map or mesh written from them.
-pub const DERIVED_BYTES: u64 = 8;
-
-impl Footprint {
-    /// One field of `params` with its height outputs and the derived fields `extras`.
-    pub fn of_field(params: &Params, extras: Extras) -> Self {
-        // The per-method table: a new method is one more line.
-        let base = match params.method {
-            Method::Perlin | Method::Fft | Method::FilteredNoise => 10,
-            // Held in memory only when not streamed (the field and its outputs).
-            Method::Trochoid => 8,
-            Method::Hybrid => 14,
-        };
-        let choppy = if params.motion.choppiness != 0.0 {
-            10
-        } else {
-            0
-        };
-        let derived =
-            2 * extras.slopes as u64 + 2 * extras.displacement as u64 + extras.jacobian as u64;
-        Self {
-            per_sample: base + choppy + DERIVED_BYTES * derived,
-            fixed: FIXED_BYTES,
-        }
-    }
-
-    /// This footprint with `outputs` more per-sample outputs (maps, meshes) alive at once.
-    pub fn with_outputs(self, outputs: u64) -> Self {
-        Self {
-            per_sample: self.per_sample + DERIVED_BYTES * outputs,
-            ..self
-        }
-    }
-
-    /// Bytes for `samples` grid samples, `copies` fields at once (parallel frames).
-    pub fn bytes(&self, samples: u64, copies: u64) -> u64 {
-        self.per_sample
-            .saturating_mul(samples)
-            .saturating_mul(copies.max(1))
-            .saturating_add(self.fixed)
-    }
-}
-
 /// Refuses a run whose estimated peak `needed` bytes exceeds the available memory,
 /// unless `force`. `what` names the run (`a 16384x16384 hybrid field`).
 pub fn check_memory(needed: u64, what: &str, force: bool) -> Result<(), Error> {
@@ -132,28 +76,12 @@ pub fn check_memory(needed: u64, what: &str, force: bool) -> Result<(), Error> {
     }
 }
 
-/// Bytes in a short human form: `1.5 GiB`.
-pub fn human_bytes(b: u64) -> String {
-    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    let mut v = b as f64;
-    let mut u = 0;
-    while v >= 1024.0 && u + 1 < units.len() {
-        v /= 1024.0;
-        u += 1;
-    }
-    if u == 0 {
-        format!("{b} B")
-    } else {
-        format!("{v:.1} {}", units[u])
-    }
-}
-
 /// Checks the size an image file's header declares before its pixels are allocated:
-/// at least one pixel, at most [`MAX_SAMPLES`](crate::config::MAX_SAMPLES), and
+/// at least one pixel, at most [`MAX_SAMPLES`], and
 /// `bytes_per_pixel` for each (plus what the analysis holds) within the available memory. The message suits
 /// `FILE: message`.
 pub fn check_image_size(width: u64, height: u64, bytes_per_pixel: u64) -> Result<(), String> {
-    let max = crate::config::MAX_SAMPLES as u64;
+    let max = MAX_SAMPLES as u64;
     if width == 0 || height == 0 {
         return Err(format!(
             "the header declares {width}×{height} pixels: no samples"
@@ -194,6 +122,7 @@ pub fn check_finite(stats: &Stats, what: &str) -> Result<(), Error> {
     })
 }
 
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -208,24 +137,6 @@ mod tests {
         assert_eq!(parse_bytes("lots"), None);
         assert_eq!(parse_bytes("3Q"), None);
         assert_eq!(parse_bytes(""), None);
-    }
-
-    #[test]
-    fn human_bytes_picks_the_largest_unit_below_the_value() {
-        assert_eq!(human_bytes(512), "512 B");
-        assert_eq!(human_bytes(3 << 29), "1.5 GiB");
-        assert_eq!(human_bytes(u64::MAX), "16.0 EiB");
-    }
-
-    #[test]
-    fn footprints_grow_with_samples_and_copies_and_saturate() {
-        let f = Footprint {
-            per_sample: 10,
-            fixed: 5,
-        };
-        assert_eq!(f.bytes(100, 1), 1005);
-        assert_eq!(f.bytes(100, 3), 3005);
-        assert_eq!(f.bytes(u64::MAX, 2), u64::MAX);
     }
 
     #[test]

@@ -15,7 +15,7 @@
 //! instruction set offers); integer operations are exact. The tests compare every path with
 //! the scalar functions bit for bit.
 
-use super::fft::signed_index;
+use crate::grid::signed_index;
 use crate::fastmath;
 use crate::rng;
 
@@ -48,7 +48,7 @@ macro_rules! multiversion {
     (@on $(#[$meta:meta])* $vis:vis fn $name:ident($isa:ident : Isa, $($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
         $(#[$meta])*
         #[allow(clippy::too_many_arguments)]
-        $vis fn $name($isa: $crate::field::lines::Isa, $($arg: $ty),*) $(-> $ret)? {
+        $vis fn $name($isa: $crate::simd::Isa, $($arg: $ty),*) $(-> $ret)? {
             #[inline(always)]
             #[allow(clippy::too_many_arguments)]
             fn mv_body($($arg: $ty),*) $(-> $ret)? $body
@@ -76,13 +76,13 @@ macro_rules! multiversion {
                 mv_body($($arg),*)
             }
             match $isa {
-                $crate::field::lines::Isa::Plain => mv_plain($($arg),*),
+                $crate::simd::Isa::Plain => mv_plain($($arg),*),
                 // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
                 #[cfg(target_arch = "x86_64")]
-                $crate::field::lines::Isa::Avx2 => unsafe { mv_avx2($($arg),*) },
+                $crate::simd::Isa::Avx2 => unsafe { mv_avx2($($arg),*) },
                 // SAFETY: Isa::Avx512 is only chosen when the processor has it.
                 #[cfg(target_arch = "x86_64")]
-                $crate::field::lines::Isa::Avx512 => unsafe { mv_avx512($($arg),*) },
+                $crate::simd::Isa::Avx512 => unsafe { mv_avx512($($arg),*) },
             }
         }
     };
@@ -90,10 +90,10 @@ macro_rules! multiversion {
         $(#[$meta])*
         #[allow(clippy::too_many_arguments)]
         $vis fn $name($($arg: $ty),*) $(-> $ret)? {
-            $crate::field::lines::multiversion! {
+            $crate::simd::multiversion! {
                 @on fn on(isa: Isa, $($arg: $ty),*) $(-> $ret)? $body
             }
-            on($crate::field::lines::Isa::detect(), $($arg),*)
+            on($crate::simd::Isa::detect(), $($arg),*)
         }
     };
 }

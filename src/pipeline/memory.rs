@@ -1,0 +1,80 @@
+//! The memory a run will need: bytes per grid sample of each method and output, checked
+//! against what is available (`limits::check_memory`) before any work starts.
+
+use crate::config::{Method, Params};
+use crate::field::dynamics::Extras;
+
+/// Peak memory of one field's synthesis and export, as bytes per grid sample plus a
+/// fixed part. The figures are measured peaks (maximum resident set, `/usr/bin/time -v`)
+/// of `generate` between 2048² and 4096², plus about a quarter: 8 bytes a sample for
+/// the height field and its transform, 12 for `hybrid`, 8 more for choppy waves; see the
+/// README's Guarantees section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Footprint {
+    pub per_sample: u64,
+    pub fixed: u64,
+}
+
+/// Bytes that do not grow with the grid (code, thread stacks, writer buffers).
+const FIXED_BYTES: u64 = 64 << 20;
+
+/// Bytes a sample of one derived 32-bit field (a slope, a displacement, the Jacobian), or
+/// of one map or mesh written from them.
+pub const DERIVED_BYTES: u64 = 8;
+
+impl Footprint {
+    /// One field of `params` with its height outputs and the derived fields `extras`.
+    pub fn of_field(params: &Params, extras: Extras) -> Self {
+        // The per-method table: a new method is one more line.
+        let base = match params.method {
+            Method::Perlin | Method::Fft | Method::FilteredNoise => 10,
+            // Held in memory only when not streamed (the field and its outputs).
+            Method::Trochoid => 8,
+            Method::Hybrid => 14,
+        };
+        let choppy = if params.motion.choppiness != 0.0 {
+            10
+        } else {
+            0
+        };
+        let derived =
+            2 * extras.slopes as u64 + 2 * extras.displacement as u64 + extras.jacobian as u64;
+        Self {
+            per_sample: base + choppy + DERIVED_BYTES * derived,
+            fixed: FIXED_BYTES,
+        }
+    }
+
+    /// This footprint with `outputs` more per-sample outputs (maps, meshes) alive at once.
+    pub fn with_outputs(self, outputs: u64) -> Self {
+        Self {
+            per_sample: self.per_sample + DERIVED_BYTES * outputs,
+            ..self
+        }
+    }
+
+    /// Bytes for `samples` grid samples, `copies` fields at once (parallel frames).
+    pub fn bytes(&self, samples: u64, copies: u64) -> u64 {
+        self.per_sample
+            .saturating_mul(samples)
+            .saturating_mul(copies.max(1))
+            .saturating_add(self.fixed)
+    }
+}
+
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn footprints_grow_with_samples_and_copies_and_saturate() {
+        let f = Footprint {
+            per_sample: 10,
+            fixed: 5,
+        };
+        assert_eq!(f.bytes(100, 1), 1005);
+        assert_eq!(f.bytes(100, 3), 3005);
+        assert_eq!(f.bytes(u64::MAX, 2), u64::MAX);
+    }
+}

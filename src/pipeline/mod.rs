@@ -1,0 +1,3 @@
+//! Writing a field: the memory guard, the job pool, streaming and staging.
+
+pub mod memory;
