@@ -1,24 +1,20 @@
 //! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
 
-pub mod analyze;
-pub mod animate;
-pub mod app;
-pub mod batch;
-pub mod bench;
 pub mod cli;
+pub mod commands;
 pub mod config;
 pub mod error;
 pub mod export;
 pub mod fastmath;
 pub mod field;
 pub mod grid;
+pub mod io;
 pub mod limits;
+pub mod measure;
 pub mod pipeline;
-pub mod simd;
-pub mod units;
-pub mod jobs;
+pub mod plot;
 pub mod render;
 pub mod rng;
+pub mod simd;
 pub mod spectrum;
-pub mod spectrum_cmd;
-pub mod stream;
+pub mod units;

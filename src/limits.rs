@@ -122,7 +122,6 @@ pub fn check_finite(stats: &Stats, what: &str) -> Result<(), Error> {
     })
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,7 +7,7 @@ fn main() {
         eprintln!("Error: cannot watch for interruptions: {e}");
         std::process::exit(1);
     }
-    if let Err(e) = seasynth::app::run(cli) {
+    if let Err(e) = seasynth::commands::run(cli) {
         eprintln!("Error: {e:#}");
         let usage = e
             .downcast_ref::<seasynth::error::Error>()

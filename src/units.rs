@@ -16,7 +16,6 @@ pub fn human_bytes(b: u64) -> String {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

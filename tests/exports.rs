@@ -191,11 +191,11 @@ fn obj_of_a_flat_field_has_unit_normals_pointing_straight_up() {
     let g = Grid::zeros(GridSpec::new(6, 5, 12.0, 10.0));
     for (up, want) in [("y", [0.0, 1.0, 0.0]), ("z", [0.0, 0.0, 1.0])] {
         let path = dir.path().join(format!("flat-{up}.obj"));
-        let args = seasynth::export::options::ExportArgs {
+        let args = seasynth::cli::ExportArgs {
             up: Some(up.into()),
             ..Default::default()
         };
-        let options = ExportOptions::from_args(&args).unwrap();
+        let options = ExportOptions::from_flags(args.flags()).unwrap();
         let out = Output::plan(&path, &options, &g.spec, true).unwrap();
         out.write(&FieldOut {
             grid: &g,
@@ -697,7 +697,7 @@ fn exr_and_tiff_read_back_bit_for_bit_equal_to_the_in_process_field() {
         time: Some("1.5".into()),
         ..Default::default()
     };
-    let params = seasynth::app::resolve_params(&args).unwrap();
+    let params = seasynth::commands::common::resolve_params(&args).unwrap();
     let want = seasynth::field::synthesize(&params).unwrap().grid.data;
     let (w, h, name, got) = exr::read(&dir.path().join("f.exr")).unwrap();
     assert_eq!((w, h, name.as_str()), (40, 24, "Y"));

@@ -229,7 +229,7 @@ fn tiff_reads_back_bit_for_bit_equal_to_the_in_process_synthesis() {
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     generate(dir.path(), &args);
 
-    let params = seasynth::app::resolve_params(&field_args(&flags, &sets))
+    let params = seasynth::commands::common::resolve_params(&field_args(&flags, &sets))
         .expect("the parameters resolve in-process");
     let want = seasynth::field::synthesize(&params).expect("synthesis");
     let (w, h, got) = tiff(&dir.path().join("r.tif"));
@@ -413,7 +413,8 @@ fn sidecar_parameters_read_back_equal_the_resolved_parameters_bit_for_bit() {
         .collect();
     let args: Vec<&str> = args.iter().map(String::as_str).collect();
     generate(dir.path(), &args);
-    let want = seasynth::app::resolve_params(&field_args(&flags, &[])).expect("resolves");
+    let want =
+        seasynth::commands::common::resolve_params(&field_args(&flags, &[])).expect("resolves");
     let sidecar = dir.path().join("a.json");
     let got = seasynth::config::presets::load(sidecar.to_str().unwrap())
         .expect("the sidecar loads as a preset");

@@ -194,7 +194,7 @@ fn the_sidecar_records_the_model_hs_and_peak_period() {
 /// run across the wind (the energy's direction is the wind's, modulo 180°).
 #[test]
 fn filtered_noise_has_the_target_spectrum_and_crests_across_the_wind() {
-    use seasynth::analyze::{Target, analyze};
+    use seasynth::measure::{Target, analyze};
     // Bins hold hundreds of wavevectors at this size: one field's binned spectrum is
     // within ~10 % of its expectation, i.e. ~0.05 in log10.
     const LOG10_RMS_TOL: f64 = 0.08;

@@ -47,7 +47,7 @@ fuzz_target!(|data: &[u8]| {
     if let (Some(side), true) = (side, selector & 2 != 0) {
         std::fs::write(&side_path, side).expect("write the sidecar");
     }
-    match seasynth::analyze::load(&path) {
+    match seasynth::io::load(&path) {
         Ok((grid, sidecar)) => {
             assert!(
                 grid.data.iter().all(|v| v.is_finite()),
@@ -55,8 +55,8 @@ fuzz_target!(|data: &[u8]| {
             );
             let target = sidecar
                 .as_ref()
-                .and_then(|s| seasynth::analyze::Target::from_sidecar(s, &grid.spec).ok());
-            let a = seasynth::analyze::analyze(&grid, target.as_ref());
+                .and_then(|s| seasynth::commands::analyze::target_from_sidecar(s, &grid.spec).ok());
+            let a = seasynth::measure::analyze(&grid, target.as_ref());
             let numbers = [a.min_m, a.max_m, a.mean_m, a.std_m, a.hs_m, a.dk_rad_per_m];
             assert!(numbers.iter().all(|v| v.is_finite()), "{a:?}");
             for v in [

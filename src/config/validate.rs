@@ -364,3 +364,17 @@ pub fn model_name(m: SpectrumModel) -> String {
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
 }
+/// Refuses a field too large to hold in memory (only streamed outputs can be larger).
+pub fn check_in_memory(params: &super::Params) -> Result<(), ParamError> {
+    let [nx, ny] = params.grid.size.0;
+    if nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_SAMPLES {
+        return Err(ParamError {
+            name: "--size (grid.size)".into(),
+            allowed: format!(
+                "at most {MAX_SIDE} per side and {MAX_SAMPLES} samples in all when the field is held in memory (only .png and .tif outputs of --method trochoid are streamed)"
+            ),
+            got: format!("{nx}x{ny}"),
+        });
+    }
+    Ok(())
+}

@@ -1,43 +1,11 @@
 //! How meshes, raw height maps and tiles are written: the `generate` flags as typed
-//! ([`ExportArgs`]) and, checked once, as [`ExportOptions`]. These are not parameters of
+//! ([`crate::cli::ExportArgs`]) and, checked once, as [`ExportOptions`]. These are not parameters of
 //! the field: they change the files, not the heights, and the sidecar records them.
 
-use clap::Args;
 use serde::Serialize;
 
 use super::Format;
 use crate::error::{Error, ParamError, Result};
-
-/// The export flags of `generate`, as typed; [`ExportOptions::from_args`] checks them.
-#[derive(Debug, Args, Clone, Default)]
-pub struct ExportArgs {
-    /// Up axis of .obj meshes: y (default; X = x, Y = height, Z = −y) or z (X = x, Y = y, Z = height)
-    #[arg(long, value_name = "y|z")]
-    pub up: Option<String>,
-    /// Mesh vertices at every K-th sample (and the far edge); default 1
-    #[arg(long, value_name = "K", allow_hyphen_values = true)]
-    pub mesh_step: Option<String>,
-    /// Factor on the heights of .obj/.glb meshes (normals follow); default 1
-    #[arg(long, value_name = "S", allow_hyphen_values = true)]
-    pub vertical_scale: Option<String>,
-    /// Split .obj/.glb/.r16/.r32 outputs into C×R tiles NAME_x{i}_y{j}.EXT sharing their edges
-    #[arg(long, value_name = "CxR", allow_hyphen_values = true)]
-    pub tiles: Option<String>,
-    /// Texture coordinates of mesh tiles: global (default: 0..1 over the field) or tile (0..1 per tile)
-    #[arg(long, value_name = "global|tile")]
-    pub tile_uv: Option<String>,
-    /// Mesh tiles of a periodic field written relative to their own corner, equal in size,
-    /// with their wrap-around neighbours in the tile index
-    #[arg(long)]
-    pub periodic_tiles: bool,
-    /// Resample .r16/.r32 to a legal terrain size: unity (2ⁿ+1) or unreal (Unreal's
-    /// recommended sizes; .r16 in Unreal's encoding with a Z scale)
-    #[arg(long, value_name = "unity|unreal")]
-    pub engine: Option<String>,
-    /// Byte order of .r16/.r32: little (default) or big
-    #[arg(long, value_name = "little|big")]
-    pub byte_order: Option<String>,
-}
 
 /// Which engine axis points up in a mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -149,72 +117,81 @@ fn count(name: &str, text: &str, max: usize) -> Result<usize> {
 }
 
 impl ExportOptions {
-    /// Parses the flags; each bad value is one error naming the flag and what is allowed.
-    pub fn from_args(a: &ExportArgs) -> Result<Self> {
+    /// Parses the export flags given, as (flag, text) in command-line order; each bad
+    /// value is one error naming the flag and what is allowed. A switch (`--periodic-tiles`)
+    /// is given with any text.
+    pub fn from_flags<'a>(
+        flags: impl IntoIterator<Item = (&'static str, &'a str)>,
+    ) -> Result<Self> {
         let mut o = Self::default();
-        if let Some(t) = &a.up {
-            o.up = choice("--up", t, &[("y", UpAxis::Y), ("z", UpAxis::Z)])?;
-            o.given.push("--up");
-        }
-        if let Some(t) = &a.mesh_step {
-            o.mesh_step = count("--mesh-step", t, crate::config::MAX_SIDE)?;
-            o.given.push("--mesh-step");
-        }
-        if let Some(t) = &a.vertical_scale {
-            o.vertical_scale = match t.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => v,
-                _ => return Err(bad("--vertical-scale", "a number > 0 and ≤ 1e6", t)),
-            };
-            o.given.push("--vertical-scale");
-        }
-        if let Some(t) = &a.tiles {
-            let parsed = t.split_once(['x', 'X']).and_then(|(c, r)| {
-                let c = c.trim().parse::<usize>().ok()?;
-                let r = r.trim().parse::<usize>().ok()?;
-                let ok = |v: usize| (1..=MAX_TILES_PER_SIDE).contains(&v);
-                (ok(c) && ok(r)).then_some(Tiles {
-                    columns: c,
-                    rows: r,
-                })
-            });
-            o.tiles = Some(parsed.ok_or_else(|| {
-                bad(
-                    "--tiles",
-                    &format!("CxR with 1 ≤ C, R ≤ {MAX_TILES_PER_SIDE}, e.g. 4x4"),
-                    t,
-                )
-            })?);
-            o.given.push("--tiles");
-        }
-        if let Some(t) = &a.tile_uv {
-            o.tile_uv = choice(
-                "--tile-uv",
-                t,
-                &[("global", TileUv::Global), ("tile", TileUv::Tile)],
-            )?;
-            o.given.push("--tile-uv");
-        }
-        if a.periodic_tiles {
-            o.periodic_tiles = true;
-            o.given.push("--periodic-tiles");
-        }
-        if let Some(t) = &a.engine {
-            o.engine = Some(choice(
-                "--engine",
-                t,
-                &[("unity", Engine::Unity), ("unreal", Engine::Unreal)],
-            )?);
-            o.given.push("--engine");
-        }
-        if let Some(t) = &a.byte_order {
-            o.byte_order = choice(
-                "--byte-order",
-                t,
-                &[("little", ByteOrder::Little), ("big", ByteOrder::Big)],
-            )?;
-            o.given.push("--byte-order");
+        for (flag, text) in flags {
+            o.set(flag, text)?;
         }
         Ok(o)
+    }
+
+    /// Parses one export flag.
+    fn set(&mut self, flag: &'static str, t: &str) -> Result<()> {
+        let o = self;
+        match flag {
+            "--up" => o.up = choice("--up", t, &[("y", UpAxis::Y), ("z", UpAxis::Z)])?,
+            "--mesh-step" => o.mesh_step = count("--mesh-step", t, crate::config::MAX_SIDE)?,
+            "--vertical-scale" => {
+                o.vertical_scale = match t.trim().parse::<f64>() {
+                    Ok(v) if v.is_finite() && v > 0.0 && v <= 1e6 => v,
+                    _ => return Err(bad("--vertical-scale", "a number > 0 and ≤ 1e6", t)),
+                }
+            }
+            "--tiles" => {
+                let parsed = t.split_once(['x', 'X']).and_then(|(c, r)| {
+                    let c = c.trim().parse::<usize>().ok()?;
+                    let r = r.trim().parse::<usize>().ok()?;
+                    let ok = |v: usize| (1..=MAX_TILES_PER_SIDE).contains(&v);
+                    (ok(c) && ok(r)).then_some(Tiles {
+                        columns: c,
+                        rows: r,
+                    })
+                });
+                o.tiles = Some(parsed.ok_or_else(|| {
+                    bad(
+                        "--tiles",
+                        &format!("CxR with 1 ≤ C, R ≤ {MAX_TILES_PER_SIDE}, e.g. 4x4"),
+                        t,
+                    )
+                })?);
+            }
+            "--tile-uv" => {
+                o.tile_uv = choice(
+                    "--tile-uv",
+                    t,
+                    &[("global", TileUv::Global), ("tile", TileUv::Tile)],
+                )?
+            }
+            "--periodic-tiles" => o.periodic_tiles = true,
+            "--engine" => {
+                o.engine = Some(choice(
+                    "--engine",
+                    t,
+                    &[("unity", Engine::Unity), ("unreal", Engine::Unreal)],
+                )?)
+            }
+            "--byte-order" => {
+                o.byte_order = choice(
+                    "--byte-order",
+                    t,
+                    &[("little", ByteOrder::Little), ("big", ByteOrder::Big)],
+                )?
+            }
+            _ => {
+                return Err(bad(
+                    "export flag",
+                    "--up, --mesh-step, --vertical-scale, --tiles, --tile-uv, --periodic-tiles, --engine or --byte-order",
+                    flag,
+                ));
+            }
+        }
+        o.given.push(flag);
+        Ok(())
     }
 
     /// Rejects flags that none of `formats` uses, and combinations that cannot be
@@ -273,10 +250,12 @@ impl ExportOptions {
 mod tests {
     use super::*;
 
+    use crate::cli::ExportArgs;
+
     fn parse(f: impl FnOnce(&mut ExportArgs)) -> Result<ExportOptions> {
         let mut a = ExportArgs::default();
         f(&mut a);
-        ExportOptions::from_args(&a)
+        ExportOptions::from_flags(a.flags())
     }
 
     #[test]

@@ -7,7 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
 
 use super::mesh::MeshInfo;
 use super::raw::RawInfo;
@@ -81,7 +83,7 @@ pub struct Sidecar<'a> {
     pub tiles_index: Option<String>,
     /// The job of a `seasynth batch` this output belongs to.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub batch: Option<&'a crate::batch::JobRecord>,
+    pub batch: Option<&'a crate::export::sidecar::JobRecord>,
     pub synthesis: &'a SynthesisInfo,
     pub params: &'a Params,
 }
@@ -152,6 +154,21 @@ impl<'a> Sidecar<'a> {
 /// The sidecar path of an output: same folder and stem, `.json`.
 pub fn path_for(output: &Path) -> PathBuf {
     output.with_extension("json")
+}
+
+/// The `batch` record of a job's sidecar.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JobRecord {
+    /// The job's number in the whole batch, from 0.
+    pub job: usize,
+    /// Jobs in the batch.
+    pub jobs: usize,
+    pub name: String,
+    /// Hash of what fixes the job's files: version, parameters (with the batch's
+    /// mapping), file names and export options.
+    pub hash: String,
+    /// The job's value of each swept key.
+    pub values: BTreeMap<String, String>,
 }
 
 #[cfg(test)]

@@ -772,8 +772,8 @@ mod tests {
         );
         let [sx, sy] = s.slopes.unwrap();
         let grid = crate::grid::Grid::new(spec, h.clone());
-        let crate::export::mesh::Slopes { dhdx: cx, dhdy: cy } =
-            crate::export::mesh::slopes_central(&grid, true);
+        let crate::measure::slopes::Slopes { dhdx: cx, dhdy: cy } =
+            crate::measure::slopes::slopes_central(&grid, true);
         let rms = |v: &[f32]| {
             (v.iter().map(|&x| (x as f64).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
         };

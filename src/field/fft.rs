@@ -27,10 +27,10 @@ use rustfft::num_complex::{Complex, Complex32};
 use rustfft::{Fft, FftPlanner};
 
 use crate::fastmath;
-use crate::simd::{multiversion, polar_line, sin_cos_line};
-pub use crate::grid::{is_resolved, signed_index};
 use crate::grid::{Grid, GridSpec};
+pub use crate::grid::{is_resolved, signed_index};
 use crate::rng::gaussian_polar;
+use crate::simd::{multiversion, polar_line, sin_cos_line};
 use crate::spectrum::{Dispersion, Spectrum};
 
 /// Everything that fixes the random spectrum of one field.

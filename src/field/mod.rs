@@ -247,7 +247,7 @@ impl Synthesizer {
         };
         let trochoid = match params.method {
             Method::Trochoid => {
-                crate::stream::check_in_memory(params)?;
+                crate::config::validate::check_in_memory(params)?;
                 let sea = trochoid::TrochoidSea::new(params)?;
                 info = SynthesisInfo::of_trochoid(params, &sea)?;
                 Some(sea)
@@ -383,7 +383,7 @@ impl Synthesizer {
         // central differences of the heights (already resampled when choppy, so their
         // normals need no displacement gradient).
         if extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
-            let s = crate::export::mesh::slopes_central(&grid, params.is_periodic());
+            let s = crate::measure::slopes::slopes_central(&grid, params.is_periodic());
             surface.slopes = Some([s.dhdx, s.dhdy]);
             surface.displacement_gradient = None;
         }

@@ -1,3 +1,10 @@
-//! Writing a field: the memory guard, the job pool, streaming and staging.
+//! Writing fields: one field to every output (`write`), streamed outputs of fields too
+//! large for memory (`stream`), batches of jobs (`batch`, `jobs`), previews, and the
+//! memory guard. Commands call this layer; it never calls back.
 
+pub mod batch;
+pub mod jobs;
 pub mod memory;
+pub mod preview;
+pub mod stream;
+pub mod write;

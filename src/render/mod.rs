@@ -15,7 +15,6 @@
 //! are identical bytes for identical inputs.
 
 pub mod camera;
-pub mod command;
 pub mod pyramid;
 pub mod shade;
 pub mod trace;

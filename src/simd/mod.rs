@@ -15,8 +15,8 @@
 //! instruction set offers); integer operations are exact. The tests compare every path with
 //! the scalar functions bit for bit.
 
-use crate::grid::signed_index;
 use crate::fastmath;
+use crate::grid::signed_index;
 use crate::rng;
 
 /// For `i` in `0..r.len()`: `(r[i], phi[i]) = rng::gaussian_polar(seed, sign·n, sign·m_i)`

@@ -70,7 +70,7 @@ fn measure_noise_spectrum() -> NoiseSpectrum {
             let mut scratch = noise3::Scratch::default();
             noise3::add_row(&ctx, &xs, 1.0, 0.0, 1.0, row, &mut scratch);
         });
-        let a = crate::analyze::analyze(&Grid::new(spec, data), None);
+        let a = crate::measure::analyze(&Grid::new(spec, data), None);
         let bins: Vec<_> = a.radial_spectrum.iter().filter(|b| b.complete).collect();
         if sum.is_empty() {
             sum = vec![0.0; bins.len()];

@@ -34,10 +34,10 @@ use serde::Serialize;
 use crate::config::{Params, SpectrumModel};
 use crate::error::Result;
 use crate::field::fft::SpectrumSetup;
-use crate::simd::{Isa, multiversion};
 use crate::field::noise3;
 use crate::grid::{Grid, GridSpec};
 use crate::rng::{self, Stream, sub_seed};
+use crate::simd::{Isa, multiversion};
 use profile::Profile;
 use select::Component;
 
@@ -537,7 +537,7 @@ mod tests {
             for (j, row) in data.chunks_mut(spec.nx).enumerate() {
                 frame.grid_row(&spec, j, row, &mut s);
             }
-            let a = crate::analyze::analyze(&Grid::new(spec, data), None);
+            let a = crate::measure::analyze(&Grid::new(spec, data), None);
             let pts: Vec<(f64, f64)> = a
                 .radial_spectrum
                 .iter()

@@ -130,7 +130,7 @@ fn bench_params(n: usize) -> Params {
 }
 
 pub fn run(args: BenchArgs) -> Result<()> {
-    crate::app::set_threads(args.threads)?;
+    crate::commands::common::set_threads(args.threads)?;
     // Every size is checked (and its memory estimated) before any timing starts.
     for &n in &args.sizes {
         let params = bench_params(n);
@@ -165,7 +165,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         .with_context(|| format!("cannot create {}", args.dir.display()))?;
     let repeats = args.repeats.max(1);
     // As in `animate`, whose frames these runs repeat.
-    crate::animate::keep_freed_memory();
+    crate::pipeline::memory::keep_freed_memory();
     println!(
         "seasynth bench: medians of {repeats} runs, {} threads, freed memory kept for reuse (as animate); ratio = stage time / bare 2D real inverse FFT",
         rayon::current_num_threads()

@@ -6,50 +6,22 @@
 //! the random draws are made once and kept (`field::Synthesizer`), and each frame redoes
 //! only the time-dependent sines and cosines and the transforms. Frames are computed a few
 //! at a time in parallel, as many as the memory estimate allows, and the memory a frame
-//! frees is kept for the next ([`keep_freed_memory`]).
+//! frees is kept for the next (`pipeline::memory::keep_freed_memory`).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use clap::Args;
 use serde::{Deserialize, Serialize};
 
-use crate::cli::FieldArgs;
+use crate::cli::AnimateArgs;
 use crate::config::Params;
 use crate::error::{Error, ParamError};
 use crate::export::maps::{self, MapContext, MapKind};
 use crate::export::{HeightMapping, Staged, png16, tiff32};
 use crate::field::{Synthesis, Synthesizer};
-use crate::jobs::{self, FileKind as Kind, Progress};
-
-#[derive(Debug, Args)]
-pub struct AnimateArgs {
-    #[command(flatten)]
-    pub field: FieldArgs,
-    /// Number of frames
-    #[arg(long, default_value_t = 30)]
-    pub frames: usize,
-    /// Output folder (created if missing)
-    #[arg(short = 'o', long = "output", value_name = "DIR")]
-    pub dir: PathBuf,
-    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp,
-    /// preview (a rendered view)
-    #[arg(long, value_delimiter = ',', default_value = "png")]
-    pub format: Vec<String>,
-    /// Skip frames whose files are all there (files appear only when complete)
-    #[arg(long)]
-    pub resume: bool,
-    /// Frames computed at once (default: cores, limited by memory)
-    #[arg(long, value_name = "N")]
-    pub jobs: Option<usize>,
-    /// Print nothing but errors
-    #[arg(short, long)]
-    pub quiet: bool,
-    /// Worker threads (default: all cores); results do not depend on it
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-}
+use crate::pipeline::jobs::{self, FileKind as Kind, Progress};
+use crate::pipeline::memory::keep_freed_memory;
 
 /// The sequence sidecar, `DIR/sequence.json`.
 #[derive(Debug, Serialize, Deserialize)]
@@ -75,31 +47,11 @@ fn frame_path(dir: &Path, k: usize, kind: Kind) -> PathBuf {
     dir.join(format!("frame_{k:05}.{}", kind.suffix()))
 }
 
-/// Makes the allocator keep freed memory for reuse instead of returning it to the system
-/// (glibc: no `mmap` for large blocks, no trimming of the heap). Every frame allocates the
-/// same buffers as the one before it; kept, they are reused as they are, where fresh
-/// pages cost a page fault per 4 KiB (a quarter of a 1024² frame with maps) and their
-/// release a `munmap`. The peak memory is that of the frames running at once; it is kept
-/// until the process ends. A no-op on other platforms.
-pub fn keep_freed_memory() {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    {
-        // SAFETY: mallopt only sets the allocator's tuning parameters (under its lock).
-        let (no_mmap, no_trim) = unsafe {
-            (
-                libc::mallopt(libc::M_MMAP_MAX, 0),
-                libc::mallopt(libc::M_TRIM_THRESHOLD, libc::c_int::MAX),
-            )
-        };
-        // 0 means the setting was refused: the frames are then only slower.
-        debug_assert!(no_mmap == 1 && no_trim == 1, "mallopt refused a setting");
-    }
-}
-
+/// Runs `seasynth animate`.
 pub fn run(args: AnimateArgs) -> Result<()> {
-    crate::app::set_threads(args.threads)?;
+    crate::commands::common::set_threads(args.threads)?;
     keep_freed_memory();
-    let params = crate::app::resolve_params(&args.field)?;
+    let params = crate::commands::common::resolve_params(&args.field)?;
     if args.frames == 0 || args.frames > 1_000_000 {
         return Err(Error::Param(ParamError {
             name: "--frames".into(),
@@ -127,8 +79,8 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     // Frames run `jobs` at a time, as many as the memory estimate allows; the draws are
     // kept for the whole sequence (16 bytes a sample, measured).
     let n = params.grid_spec().len() as u64;
-    let per_frame =
-        crate::pipeline::memory::Footprint::of_field(&params, extras).with_outputs(kinds.len() as u64);
+    let per_frame = crate::pipeline::memory::Footprint::of_field(&params, extras)
+        .with_outputs(kinds.len() as u64);
     let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 1));
     let [nx, ny] = params.grid.size.0;
     crate::limits::check_memory(
@@ -244,7 +196,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
                 Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
                 Kind::Preview => {
-                    let img = crate::render::command::preview_of(cx_params, &syn)?;
+                    let img = crate::pipeline::preview::preview_of(cx_params, &syn)?;
                     crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
                 }
                 Kind::Map(m) => {

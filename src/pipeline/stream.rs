@@ -15,8 +15,8 @@ use std::path::PathBuf;
 use anyhow::Result;
 use rayon::prelude::*;
 
-use crate::config::{MAX_SAMPLES, MAX_SIDE, Method, Params};
-use crate::error::{Error, ParamError};
+use crate::config::{Method, Params};
+use crate::error::Error;
 use crate::export::maps::MapKind;
 use crate::export::sidecar::{self, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
 use crate::export::{Format, HeightMapping, Staged, png16, tiff32};
@@ -36,21 +36,6 @@ pub fn applies(params: &Params, paths: &[PathBuf]) -> bool {
                 && matches!(MapKind::from_path(p), Ok(None))
                 && !name.ends_with(".preview.png")
         })
-}
-
-/// Refuses a field too large to hold in memory (only streamed outputs can be larger).
-pub fn check_in_memory(params: &Params) -> Result<(), ParamError> {
-    let [nx, ny] = params.grid.size.0;
-    if nx > MAX_SIDE || ny > MAX_SIDE || nx * ny > MAX_SAMPLES {
-        return Err(ParamError {
-            name: "--size (grid.size)".into(),
-            allowed: format!(
-                "at most {MAX_SIDE} per side and {MAX_SAMPLES} samples in all when the field is held in memory (only .png and .tif outputs of --method trochoid are streamed)"
-            ),
-            got: format!("{nx}x{ny}"),
-        });
-    }
-    Ok(())
 }
 
 /// Rows per batch for rows of `nx` samples: ~[`BATCH_BYTES`], a multiple of 16.
@@ -151,9 +136,13 @@ pub fn fill_rows(
 }
 
 /// `generate` for streamed outputs (see the module docs).
-pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate::app::Written> {
+pub fn generate(
+    params: &Params,
+    paths: &[PathBuf],
+    quiet: bool,
+) -> Result<crate::pipeline::write::Written> {
     let spec = params.grid_spec();
-    crate::app::refuse_repeated(paths)?;
+    crate::pipeline::write::refuse_repeated(paths)?;
     // Stage every file (and one sidecar per stem) before any work.
     let mut outputs = Vec::new();
     for p in paths {
@@ -188,7 +177,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         && params.output.height_range.is_none()
         && !outputs.iter().any(|(f, _)| *f == Format::Tiff32);
     let passes = outputs.len() + needs_range_pass as usize;
-    let bar = crate::jobs::progress_bar(
+    let bar = crate::pipeline::jobs::progress_bar(
         (passes * spec.ny) as u64,
         "{msg} {bar:40} {pos}/{len} rows, {per_sec}, ETA {eta}",
         !quiet,
@@ -242,7 +231,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         for p in paths.iter().filter(|p| &sidecar::path_for(p) == side) {
             let format = Format::from_path(p)?;
             doc.files.push(FileEntry {
-                file: crate::app::file_name(p),
+                file: crate::pipeline::write::file_name(p),
                 format,
             });
             match format {
@@ -260,7 +249,7 @@ pub fn generate(params: &Params, paths: &[PathBuf], quiet: bool) -> Result<crate
         }
         staged.write_json(&doc)?;
     }
-    Ok(crate::app::Written {
+    Ok(crate::pipeline::write::Written {
         stats,
         mapping: mapping.map_or(
             HeightMapping {

@@ -1,36 +1,17 @@
-//! `seasynth spectrum`: the model spectrum itself, as numbers or as plots.
-//!
-//! - `--freq F1,F2,… --json | --csv`: the one-sided frequency spectrum F(f) in m²/Hz of a
-//!   physical model (`pierson-moskowitz`, `jonswap`, `tma`) at the given frequencies (Hz),
-//!   with the model's Hs = 4·√m0, peak frequency and peak period.
-//! - `--plot FILE.png`: F(f) on log–log axes over [0.2 fp, 10 fp] (widened to take in
-//!   the `--freq` points), the peak marked (Mastin Fig. 4, Thon Fig. 2). 800×500 RGB.
-//! - `--plot2d FILE.png`: the directional wavenumber spectrum Ψ(kx, ky) (m⁴) on a
-//!   Cartesian grid centred on k = 0 over ±3 kp, log color scale, wind arrow (Mastin
-//!   Fig. 7). `phillips` and `fractal` have no F(f); for them the image shows the
-//!   discrete amplitude variance E|h̃0(k)|² (m²) the generator uses on the preset's grid.
-//!   600×600 RGB, +kx to the right and +ky **up** (mathematical orientation, unlike the
-//!   height-map images where +y points down).
-//!
-//! The model is built from the same parameters as `generate` (preset, `--set`, flags).
-//! Plot files are staged before any computation (an unwritable path fails at once) and
-//! written whole or not at all.
+//! The model spectrum's plots (`seasynth spectrum --plot`, `--plot2d`): F(f) on log–log
+//! axes with the peak marked, and the directional wavenumber spectrum Ψ(kx, ky) as a
+//! color map with +ky up.
 
-use std::path::{Path, PathBuf};
-
-use anyhow::Result;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::ViridisRGB;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use serde::Serialize;
 
+use super::draw_err;
 use crate::config::validate::model_name;
 use crate::config::{Params, SpectrumModel};
-use crate::error::{Error, ParamError};
-use crate::export::Staged;
-use crate::export::rgb8::draw_err;
-use crate::field::{SeaModel, sea_model};
+use crate::error::Error;
+use crate::field::SeaModel;
 use crate::spectrum::Fractal;
 
 /// Size of the `--plot` image, pixels.
@@ -45,240 +26,6 @@ pub const PLOT2D_RANGE_KP: f64 = 3.0;
 pub const PLOT2D_DECADES: f64 = 6.0;
 /// Decades of the `--plot` vertical axis below the peak.
 const PLOT_DECADES: f64 = 6.0;
-
-/// Command-line arguments of `seasynth spectrum`.
-#[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("format").args(["json", "csv"]).multiple(false)))]
-pub struct SpectrumArgs {
-    /// The field parameters, as for `generate` (boxed: keeps the `Command` enum small).
-    #[command(flatten)]
-    pub field: Box<crate::cli::FieldArgs>,
-    /// Frequencies in Hz where F(f) is printed, comma-separated (each > 0); with --json or --csv
-    #[arg(
-        long,
-        value_name = "F1,F2,…",
-        allow_hyphen_values = true,
-        requires = "format"
-    )]
-    pub freq: Option<String>,
-    /// Print one JSON object: {spectrum, points:[{f_hz, s_m2_per_hz}], hs_m, fp_hz, tp_s, m0_m2, params}
-    #[arg(long, requires = "freq")]
-    pub json: bool,
-    /// Print CSV: the header f_hz,s_m2_per_hz and one row per frequency
-    #[arg(long, requires = "freq")]
-    pub csv: bool,
-    /// Write F(f) on log–log axes, peak marked (800×500 PNG)
-    #[arg(long, value_name = "FILE.png")]
-    pub plot: Option<PathBuf>,
-    /// Write the directional wavenumber spectrum Ψ(kx, ky) over ±3 kp as a color map (600×600 PNG)
-    #[arg(long, value_name = "FILE.png")]
-    pub plot2d: Option<PathBuf>,
-}
-
-/// One point of the frequency spectrum.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Point {
-    pub f_hz: f64,
-    pub s_m2_per_hz: f64,
-}
-
-/// What `--json` prints.
-#[derive(Debug, Serialize)]
-pub struct Report<'a> {
-    /// The model name as in presets (`pierson-moskowitz`, `jonswap`, `tma`).
-    pub spectrum: String,
-    /// F(f) at the requested frequencies, in the order given.
-    pub points: Vec<Point>,
-    /// Significant wave height of the model, 4·√m0, m.
-    pub hs_m: f64,
-    /// Frequency where F is largest, Hz.
-    pub fp_hz: f64,
-    /// Peak period 1/fp, s.
-    pub tp_s: f64,
-    /// m0 = ∫F df = (hs_m/4)², m².
-    pub m0_m2: f64,
-    /// Wavenumber of the peak frequency through the dispersion relation, rad/m.
-    pub kp_rad_per_m: f64,
-    /// 2π/kp, m (compare `analyze --json`'s `peak_wavelength_m`).
-    pub peak_wavelength_m: f64,
-    /// The fully resolved parameters.
-    pub params: &'a Params,
-}
-
-/// Parses `--freq`: comma-separated frequencies in Hz, each finite and > 0.
-pub fn parse_freqs(text: &str) -> Result<Vec<f64>, ParamError> {
-    let mut good = Vec::new();
-    let mut bad = Vec::new();
-    for item in text.split(',') {
-        let item = item.trim();
-        match item.parse::<f64>() {
-            Ok(f) if f.is_finite() && f > 0.0 => good.push(f),
-            _ => bad.push(if item.is_empty() {
-                "(empty)".to_string()
-            } else {
-                item.to_string()
-            }),
-        }
-    }
-    if bad.is_empty() {
-        Ok(good)
-    } else {
-        Err(ParamError {
-            name: "--freq".into(),
-            allowed:
-                "comma-separated frequencies in Hz, each a finite number > 0 (e.g. 0.05,0.1,0.2)"
-                    .into(),
-            got: bad.join(", "),
-        })
-    }
-}
-
-/// Why a model has no frequency spectrum in m²/Hz, for `--freq` and `--plot`.
-fn no_frequency_spectrum(model: SpectrumModel) -> String {
-    let what = match model {
-        SpectrumModel::Phillips => {
-            "phillips is a discrete wavenumber spectrum (Tessendorf's convention: A multiplies the \
-             discrete Fourier amplitudes)"
-        }
-        _ => "fractal is a wavenumber power law for terrain, without dispersion",
-    };
-    format!(
-        "{what}, so it has no frequency spectrum in m²/Hz; use a physical model \
-         (--spectrum pierson-moskowitz, jonswap or tma)"
-    )
-}
-
-/// A number as JSON writes it (shortest text that reads back to the same f64).
-pub fn number_text(v: f64) -> String {
-    serde_json::to_string(&v).unwrap_or_else(|_| v.to_string())
-}
-
-/// The CSV text: header `f_hz,s_m2_per_hz`, then one row per point.
-pub fn csv_text(points: &[Point]) -> String {
-    let mut s = String::from("f_hz,s_m2_per_hz\n");
-    for p in points {
-        s.push_str(&number_text(p.f_hz));
-        s.push(',');
-        s.push_str(&number_text(p.s_m2_per_hz));
-        s.push('\n');
-    }
-    s
-}
-
-/// Checks a plot path (a `.png` file in a writable folder) and stages it.
-fn stage_plot(path: &Path) -> Result<Staged, Error> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("png") {
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message: "plots are PNG images: the file name must end in .png".into(),
-        });
-    }
-    Staged::create(path)
-}
-
-/// Runs `seasynth spectrum`.
-pub fn run(args: SpectrumArgs) -> Result<()> {
-    // Through `Error`, so a bad value exits with code 2.
-    let freqs = args
-        .freq
-        .as_deref()
-        .map(parse_freqs)
-        .transpose()
-        .map_err(Error::from)?;
-    if freqs.is_none() && args.plot.is_none() && args.plot2d.is_none() {
-        return Err(Error::Set {
-            origin: "spectrum".into(),
-            message: "nothing to do: give --freq F1,F2,… with --json or --csv, --plot FILE.png \
-                      or --plot2d FILE.png"
-                .into(),
-        }
-        .into());
-    }
-    let params = crate::app::resolve_params(&args.field)?;
-    let sea = sea_model(&params)?;
-    if sea.is_none() {
-        for (given, flag) in [(freqs.is_some(), "--freq"), (args.plot.is_some(), "--plot")] {
-            if given {
-                return Err(Error::Set {
-                    origin: flag.into(),
-                    message: no_frequency_spectrum(params.spectrum.model),
-                }
-                .into());
-            }
-        }
-    }
-    if let (Some(a), Some(b)) = (&args.plot, &args.plot2d) {
-        if a == b {
-            return Err(Error::Output {
-                path: a.clone(),
-                message: "given to both --plot and --plot2d".into(),
-            }
-            .into());
-        }
-    }
-    // Stage the plot files before any work: a bad path fails now.
-    let plot = args.plot.as_deref().map(stage_plot).transpose()?;
-    let plot2d = args.plot2d.as_deref().map(stage_plot).transpose()?;
-
-    // The numbers first (the directional spectrum of --plot2d takes the model over).
-    let text = match (&freqs, &sea) {
-        (Some(freqs), Some(sea)) => Some(points_text(&params, sea, freqs, args.csv)?),
-        _ => None,
-    };
-    if let Some(staged) = plot {
-        let sea = sea.as_ref().expect("checked above");
-        let image = render_plot(&params, sea, freqs.as_deref().unwrap_or(&[]))
-            .map_err(|e| Error::io(&staged.path, e))?;
-        crate::export::rgb8::write(staged, &image, PLOT_SIZE)?;
-    }
-    if let Some(staged) = plot2d {
-        let map = wavenumber_map(&params, sea)?;
-        let image = render_plot2d(&map).map_err(|e| Error::io(&staged.path, e))?;
-        crate::export::rgb8::write(staged, &image, PLOT2D_SIZE)?;
-    }
-    if let Some(text) = text {
-        print!("{text}");
-    }
-    Ok(())
-}
-
-/// The `--json` (or with `csv`, the `--csv`) text of F(f) at `freqs`.
-pub fn points_text(
-    params: &Params,
-    sea: &SeaModel,
-    freqs: &[f64],
-    csv: bool,
-) -> Result<String, serde_json::Error> {
-    let points: Vec<Point> = freqs
-        .iter()
-        .map(|&f| Point {
-            f_hz: f,
-            s_m2_per_hz: sea.freq.density(f),
-        })
-        .collect();
-    if csv {
-        return Ok(csv_text(&points));
-    }
-    let hs = sea.freq.hs_m();
-    let fp = sea.freq.peak_hz();
-    let kp = sea.dispersion.wavenumber(std::f64::consts::TAU * fp);
-    let report = Report {
-        spectrum: model_name(params.spectrum.model),
-        points,
-        hs_m: hs,
-        fp_hz: fp,
-        tp_s: 1.0 / fp,
-        m0_m2: (hs / 4.0) * (hs / 4.0),
-        kp_rad_per_m: kp,
-        peak_wavelength_m: std::f64::consts::TAU / kp,
-        params,
-    };
-    Ok(serde_json::to_string_pretty(&report)? + "\n")
-}
 
 /// A tick value with up to 3 significant digits and no trailing zeros.
 fn tick_text(v: f64) -> String {
@@ -481,7 +228,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
                 .label("--freq points")
                 .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.stroke_width(2)));
         }
-        crate::export::rgb8::draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+        crate::plot::draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         root.present().map_err(draw_err)?;
     }
     Ok(buf)
@@ -814,45 +561,12 @@ fn draw_wind_arrow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spectrum::FrequencySpectrum;
+    use crate::field::sea_model;
 
     fn params(model: SpectrumModel) -> Params {
         let mut p = Params::default();
         p.spectrum.model = model;
         p
-    }
-
-    #[test]
-    fn frequencies_parse_and_bad_ones_are_named() {
-        assert_eq!(parse_freqs("0.05, 0.1,2e-1").unwrap(), vec![0.05, 0.1, 0.2]);
-        let e = parse_freqs("0,-1").unwrap_err().to_string();
-        assert!(e.starts_with("--freq must be"), "{e}");
-        assert!(e.contains("(got 0, -1)"), "{e}");
-        let e = parse_freqs("0.1,abc,,inf,NaN").unwrap_err().to_string();
-        assert!(e.contains("(got abc, (empty), inf, NaN)"), "{e}");
-    }
-
-    #[test]
-    fn csv_numbers_read_back_exactly() {
-        let pts = [
-            Point {
-                f_hz: 0.05,
-                s_m2_per_hz: 1.234_567_890_123_456_7e-20,
-            },
-            Point {
-                f_hz: 0.1,
-                s_m2_per_hz: 12.5,
-            },
-        ];
-        let text = csv_text(&pts);
-        let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("f_hz,s_m2_per_hz"));
-        for (line, p) in lines.zip(&pts) {
-            let (f, s) = line.split_once(',').unwrap();
-            assert_eq!(f.parse::<f64>().unwrap(), p.f_hz);
-            assert_eq!(s.parse::<f64>().unwrap(), p.s_m2_per_hz);
-        }
-        assert_eq!(text.lines().count(), 3);
     }
 
     #[test]
@@ -878,67 +592,6 @@ mod tests {
         assert_eq!(decade_text(1e-3), "1e-3");
         assert_eq!(decade_text(1.0), "1");
         assert_eq!(decade_text(1e4), "1e4");
-    }
-
-    /// ∫F df by Simpson's rule in ln f over [fp/20, 1000 fp] plus the f⁻⁵ tail.
-    fn m0_by_quadrature(f: &dyn FrequencySpectrum) -> f64 {
-        let fp = f.peak_hz();
-        let (a, b) = ((fp / 20.0).ln(), (1000.0 * fp).ln());
-        let n = 20_000;
-        let h = (b - a) / n as f64;
-        let g = |u: f64| {
-            let x = u.exp();
-            f.density(x) * x
-        };
-        let mut s = g(a) + g(b);
-        for i in 1..n {
-            s += g(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
-        }
-        let fmax = b.exp();
-        s * h / 3.0 + f.density(fmax) * fmax / 4.0
-    }
-
-    #[test]
-    fn the_reported_m0_is_the_integral_of_the_printed_density() {
-        let mut p = params(SpectrumModel::PiersonMoskowitz);
-        p.wind.speed_mps = 15.0;
-        let mut cases = vec![p.clone()];
-        p.spectrum.model = SpectrumModel::Jonswap;
-        cases.push(p.clone());
-        p.spectrum.model = SpectrumModel::Tma;
-        p.spectrum.depth_m = Some(20.0);
-        cases.push(p.clone());
-        for p in cases {
-            p.validate().unwrap();
-            let sea = sea_model(&p).unwrap().unwrap();
-            let hs = sea.freq.hs_m();
-            let m0 = m0_by_quadrature(sea.freq.as_ref());
-            let rel = (4.0 * m0.sqrt() - hs).abs() / hs;
-            assert!(
-                rel < 1e-7,
-                "{:?}: Hs {hs} vs 4√m0 {}",
-                p.spectrum.model,
-                4.0 * m0.sqrt()
-            );
-        }
-    }
-
-    #[test]
-    fn phillips_and_fractal_have_no_sea_model_and_say_why() {
-        assert!(
-            sea_model(&params(SpectrumModel::Phillips))
-                .unwrap()
-                .is_none()
-        );
-        assert!(
-            sea_model(&params(SpectrumModel::Fractal))
-                .unwrap()
-                .is_none()
-        );
-        let m = no_frequency_spectrum(SpectrumModel::Phillips);
-        assert!(m.contains("phillips is a discrete wavenumber spectrum (Tessendorf's convention"));
-        assert!(m.contains("use a physical model"));
-        assert!(no_frequency_spectrum(SpectrumModel::Fractal).starts_with("fractal"));
     }
 
     /// (row, col) of the largest sample.

@@ -1,13 +1,12 @@
-//! What each command does, between the parsed command line and the library.
+//! Writing one field: synthesized once, written to every output path with its sidecars,
+//! every file staged before the work.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
-use crate::cli::{Cli, Command, FieldArgs, GenerateArgs};
-use crate::config::layers::{self, Assignment};
-use crate::config::{Params, presets};
+use crate::config::Params;
 use crate::error::Error;
 use crate::export::maps::{self, MapContext, MapKind};
 use crate::export::mesh;
@@ -18,124 +17,6 @@ use crate::export::tiles::{self, TileIndex, TileSet};
 use crate::export::{self, FieldOut, Format, HeightMapping, Output, Plan, Staged};
 use crate::field;
 
-/// Runs one command.
-pub fn run(cli: Cli) -> Result<()> {
-    match cli.command {
-        Command::Generate(args) => generate(*args),
-        Command::Presets { name } => list_presets(name.as_deref()),
-        Command::Animate(args) => crate::animate::run(*args),
-        Command::Batch(args) => crate::batch::run(*args),
-        Command::Analyze(args) => crate::analyze::run(args),
-        Command::Bench(args) => crate::bench::run(args),
-        Command::Spectrum(args) => crate::spectrum_cmd::run(args),
-        Command::Render(args) => crate::render::command::run(*args),
-    }
-}
-
-/// Sets the number of worker threads for the whole process.
-pub fn set_threads(threads: Option<usize>) -> Result<()> {
-    if let Some(n) = threads {
-        if n == 0 {
-            return Err(Error::Param(crate::error::ParamError {
-                name: "--threads".into(),
-                allowed: "≥ 1".into(),
-                got: "0".into(),
-            })
-            .into());
-        }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build_global()
-            .context("cannot start worker threads")?;
-    }
-    Ok(())
-}
-
-/// Resolves the field parameters of a command line.
-pub fn resolve_params(args: &FieldArgs) -> Result<Params, Error> {
-    let mut assignments = Vec::new();
-    for s in &args.set {
-        assignments.push(Assignment::parse_set(s)?);
-    }
-    for (flag, value) in args.flags() {
-        assignments.push(Assignment::flag(flag, value));
-    }
-    layers::resolve(args.preset.as_deref(), &assignments)
-}
-
-/// The default output stem: the preset's name (or file stem), else `seasynth`.
-fn default_stem(preset: Option<&str>) -> String {
-    match preset {
-        None => presets::DEFAULT_PRESET.to_string(),
-        Some(p) if presets::builtin(p).is_some() => p.to_string(),
-        Some(p) => Path::new(p)
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .map(|s| format!("{s}-regenerated"))
-            .unwrap_or_else(|| "seasynth".into()),
-    }
-}
-
-fn generate(args: GenerateArgs) -> Result<()> {
-    set_threads(args.threads)?;
-    let params = resolve_params(&args.field)?;
-    let options = ExportOptions::from_args(&args.export)?;
-    let paths = if args.outputs.is_empty() {
-        std::fs::create_dir_all("out").context("cannot create the folder out/")?;
-        let stem = default_stem(args.field.preset.as_deref());
-        vec![
-            PathBuf::from(format!("out/{stem}.png")),
-            PathBuf::from(format!("out/{stem}.tif")),
-        ]
-    } else {
-        args.outputs.clone()
-    };
-    // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
-    // memory.
-    let written = if crate::stream::applies(&params, &paths) {
-        let formats = paths
-            .iter()
-            .map(|p| Format::from_path(p))
-            .collect::<Result<Vec<_>, _>>()?;
-        options.check(&formats, params.is_periodic())?;
-        crate::stream::generate(&params, &paths, args.quiet)?
-    } else {
-        write_field(
-            &params,
-            &paths,
-            &options,
-            &SidecarExtras::default(),
-            None,
-            args.field.force,
-        )?
-    };
-    if !args.quiet {
-        let [nx, ny] = params.grid.size.0;
-        let stats = written.stats;
-        let mapping = written.mapping;
-        eprintln!(
-            "{} {nx}×{ny} over {}×{} m: std {:.3} m, Hs {:.3} m, min {:.3} m, max {:.3} m",
-            params.method.name(),
-            params.grid.extent_m.0[0],
-            params.grid.extent_m.0[1],
-            stats.std_m,
-            stats.hs_m,
-            stats.min_m,
-            stats.max_m
-        );
-        for p in &written.files {
-            eprintln!("wrote {}", p.display());
-        }
-        if written.has_png {
-            eprintln!(
-                "16-bit mapping: {:.4} m → 0, {:.4} m → 65535",
-                mapping.min_m, mapping.max_m
-            );
-        }
-    }
-    Ok(())
-}
-
 /// What a caller adds to the sidecars of [`write_field`].
 #[derive(Default)]
 pub struct SidecarExtras<'a> {
@@ -143,7 +24,7 @@ pub struct SidecarExtras<'a> {
     /// (default: `--height-range`).
     pub mapping_source: Option<&'static str>,
     /// The batch job this field is.
-    pub batch: Option<&'a crate::batch::JobRecord>,
+    pub batch: Option<&'a crate::export::sidecar::JobRecord>,
 }
 
 /// What [`write_field`] wrote.
@@ -174,7 +55,7 @@ fn needed_extras(
     }
     let mut extras = maps::extras_for(&kinds);
     let meshes = formats.iter().any(|f| f.is_mesh());
-    extras.slopes |= (meshes && crate::render::command::exact_slopes_apply(params)) || previews;
+    extras.slopes |= (meshes && crate::pipeline::preview::exact_slopes_apply(params)) || previews;
     extras
 }
 
@@ -287,7 +168,7 @@ pub fn write_field(
     }
 
     let extras = needed_extras(params, staged_maps.iter().map(|(_, k)| *k), &formats);
-    let exact_slopes = crate::render::command::exact_slopes_apply(params);
+    let exact_slopes = crate::pipeline::preview::exact_slopes_apply(params);
     let meshes = formats.iter().any(|f| f.is_mesh());
     let [nx, ny] = params.grid.size.0;
     crate::limits::check_memory(
@@ -408,7 +289,7 @@ pub fn write_field(
                 maps::write_map(kind, staged, &cx)?;
             }
             None => {
-                let img = crate::render::command::preview_of(params, &synthesis)?;
+                let img = crate::pipeline::preview::preview_of(params, &synthesis)?;
                 export::rgb8::write(staged, &img.rgb, (img.width, img.height))?;
             }
         }
@@ -445,30 +326,4 @@ pub(crate) fn file_name(p: &Path) -> String {
     p.file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default()
-}
-
-fn list_presets(name: Option<&str>) -> Result<()> {
-    match name {
-        Some(n) => {
-            let text = presets::builtin(n).ok_or_else(|| {
-                let names: Vec<&str> = presets::BUILTIN.iter().map(|(n, _)| *n).collect();
-                Error::Preset(format!(
-                    "no preset `{n}` (built-in presets: {})",
-                    names.join(", ")
-                ))
-            })?;
-            print!("{text}");
-        }
-        None => {
-            let width = presets::BUILTIN
-                .iter()
-                .map(|(n, _)| n.len())
-                .max()
-                .unwrap_or(0);
-            for (n, text) in presets::BUILTIN {
-                println!("{n:width$}  {}", presets::description(text));
-            }
-        }
-    }
-    Ok(())
 }

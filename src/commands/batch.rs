@@ -7,88 +7,26 @@
 //! name, swept values and a hash of everything that fixes its files; `--resume` keeps a
 //! job whose files and sidecar are there with that hash.
 
-pub mod index;
-pub mod plan;
-
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 
 use anyhow::Result;
-use clap::Args;
 use serde::{Deserialize, Serialize};
 
-use crate::app::{SidecarExtras, write_field};
-use crate::cli::FieldArgs;
+use crate::cli::BatchArgs;
 use crate::config::layers::{self, Assignment, canonical_key};
 use crate::config::{Params, Range2};
 use crate::error::{Error, ParamError};
-use crate::export::options::{ExportArgs, ExportOptions};
+use crate::export::options::ExportOptions;
+use crate::export::sidecar::JobRecord;
 use crate::export::{Format, HeightMapping, Staged};
 use crate::field::Synthesis;
-use crate::jobs::{self, FileKind, Progress};
-use index::{Index, Row, Status};
-use plan::{JobSpec, Manifest, NameTemplate, Shard, Sweep};
-
-#[derive(Debug, Args)]
-pub struct BatchArgs {
-    #[command(flatten)]
-    pub field: FieldArgs,
-    /// KEY=A,B,C or KEY=START:STOP:STEP (STOP excluded) over any parameter (flag name or
-    /// preset key); several sweeps give their cartesian product
-    #[arg(long, value_name = "KEY=VALUES")]
-    pub sweep: Vec<String>,
-    /// A TOML manifest: base preset, [set] overrides, [sweep] tables, [[job]] entries
-    #[arg(long, value_name = "FILE.toml")]
-    pub manifest: Option<PathBuf>,
-    /// Output folder (created if missing); with --merge-index, where the merged index goes
-    #[arg(short = 'o', long = "output", value_name = "DIR")]
-    pub dir: Option<PathBuf>,
-    /// File name template: {index} and {KEY} for any key (default: the index and every swept key)
-    #[arg(long, value_name = "TEMPLATE")]
-    pub name: Option<String>,
-    /// Files per job: png, tif, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp,
-    /// preview (default png)
-    #[arg(long, value_delimiter = ',')]
-    pub format: Vec<String>,
-    /// Jobs computed at once (default: cores, limited by memory)
-    #[arg(long, value_name = "N")]
-    pub jobs: Option<usize>,
-    /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1)
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<String>,
-    /// Keep jobs whose files and sidecar are complete and match the job's parameters
-    #[arg(long)]
-    pub resume: bool,
-    /// Merge the shard indexes found in these folders into one index.csv and index.json
-    #[arg(long, value_name = "DIR", num_args = 1..)]
-    pub merge_index: Vec<PathBuf>,
-    /// How meshes, raw height maps and tiles are written
-    #[command(flatten)]
-    pub export: ExportArgs,
-    /// Print nothing but errors
-    #[arg(short, long)]
-    pub quiet: bool,
-    /// Worker threads (default: all cores); results do not depend on it
-    #[arg(long, value_name = "N")]
-    pub threads: Option<usize>,
-}
-
-/// The `batch` record of a job's sidecar.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct JobRecord {
-    /// The job's number in the whole batch, from 0.
-    pub job: usize,
-    /// Jobs in the batch.
-    pub jobs: usize,
-    pub name: String,
-    /// Hash of what fixes the job's files: version, parameters (with the batch's
-    /// mapping), file names and export options.
-    pub hash: String,
-    /// The job's value of each swept key.
-    pub values: BTreeMap<String, String>,
-}
+use crate::pipeline::batch::index::{self, Index, Row, Status};
+use crate::pipeline::batch::plan::{self, JobSpec, Manifest, NameTemplate, Shard, Sweep};
+use crate::pipeline::jobs::{self, FileKind, Progress};
+use crate::pipeline::write::{SidecarExtras, write_field};
 
 /// `DIR/batch.json`: what every shard of the batch shares.
 #[derive(Debug, Serialize, Deserialize)]
@@ -202,7 +140,7 @@ fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
 }
 
 pub fn run(args: BatchArgs) -> Result<()> {
-    crate::app::set_threads(args.threads)?;
+    crate::commands::common::set_threads(args.threads)?;
     if !args.merge_index.is_empty() {
         let out = args
             .dir
@@ -241,7 +179,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         _ => vec!["png".into()],
     };
     let suffixes = suffixes(&formats)?;
-    let options = ExportOptions::from_args(&args.export)?;
+    let options = ExportOptions::from_flags(args.export.flags())?;
     let shard = match &args.shard {
         Some(s) => Shard::parse(s)?,
         None => Shard::all(),
@@ -415,8 +353,12 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 // quarter of the available memory and 512 MiB; the others are computed again.
                 // (Outputs that need derived fields, such as maps, previews and meshes, are
                 // computed again with them: `write_field` decides, by the same rule.)
-                let budget = (crate::limits::available_memory().ok().flatten().unwrap_or(0) / 4)
-                    .min(KEEP_MAX_BYTES);
+                let budget = (crate::limits::available_memory()
+                    .ok()
+                    .flatten()
+                    .unwrap_or(0)
+                    / 4)
+                .min(KEEP_MAX_BYTES);
                 let reserved = std::sync::atomic::AtomicU64::new(0);
                 let ranges = jobs::run_pool(needs.len(), workers, |i| {
                     let job = needs[i];
@@ -426,7 +368,10 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     let st = syn.grid.stats();
                     let bytes = syn.grid.data.len() as u64 * 4;
                     let keep = shard.contains(job)
-                        && !crate::app::needs_extras(p, &all[job].paths(&dir, &suffixes))
+                        && !crate::pipeline::write::needs_extras(
+                            p,
+                            &all[job].paths(&dir, &suffixes),
+                        )
                         && reserved.fetch_add(bytes, std::sync::atomic::Ordering::Relaxed) + bytes
                             <= budget;
                     if keep {
@@ -694,21 +639,13 @@ fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> O
     })
 }
 
-/// The entries of folder `dir` whose name is UTF-8 and satisfies `wanted`.
-fn files_named(dir: &Path, wanted: impl Fn(&str) -> bool) -> std::io::Result<Vec<PathBuf>> {
-    Ok(std::fs::read_dir(dir)?
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .filter(|p| p.file_name().and_then(|n| n.to_str()).is_some_and(&wanted))
-        .collect())
-}
-
 /// Removes the temporary files a killed run left for these jobs (`.NAME.….part`, the
 /// staging names of `export::Staged`). Only this run's jobs: shards sharing the folder
 /// keep theirs.
 fn remove_stale_temporaries<'a>(dir: &Path, names: impl Iterator<Item = &'a str>) -> Result<()> {
-    let stale = files_named(dir, |n| n.starts_with('.') && n.ends_with(".part"))
-        .map_err(|e| Error::io(dir, e))?;
+    let stale =
+        crate::pipeline::batch::files_named(dir, |n| n.starts_with('.') && n.ends_with(".part"))
+            .map_err(|e| Error::io(dir, e))?;
     if stale.is_empty() {
         return Ok(());
     }

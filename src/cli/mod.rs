@@ -6,6 +6,18 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+mod analyze;
+mod animate;
+mod batch;
+mod export;
+mod spectrum;
+
+pub use analyze::AnalyzeArgs;
+pub use animate::AnimateArgs;
+pub use batch::BatchArgs;
+pub use export::ExportArgs;
+pub use spectrum::SpectrumArgs;
+
 #[derive(Debug, Parser)]
 #[command(
     name = "seasynth",
@@ -27,15 +39,15 @@ pub enum Command {
         name: Option<String>,
     },
     /// A numbered frame sequence of one sea (frame k at t = time + k/fps), one 16-bit mapping for all
-    Animate(Box<crate::animate::AnimateArgs>),
+    Animate(Box<AnimateArgs>),
     /// Many fields: sweeps (cartesian product) or a manifest, one 16-bit mapping, parallel, resumable, shardable
-    Batch(Box<crate::batch::BatchArgs>),
+    Batch(Box<BatchArgs>),
     /// Statistics and the measured spectrum of a height map (TIFF in meters, or PNG with its sidecar)
-    Analyze(crate::analyze::AnalyzeArgs),
+    Analyze(AnalyzeArgs),
     /// Time each stage (spectrum, FFT, Perlin, blend, writers) against a bare 2D real FFT
     Bench(BenchArgs),
     /// The model spectrum: F(f) at given frequencies (--json, --csv), or plots of F(f) and Ψ(kx, ky)
-    Spectrum(crate::spectrum_cmd::SpectrumArgs),
+    Spectrum(SpectrumArgs),
     /// A shaded perspective preview of a field (synthesized, or --from a height map), 8-bit PNG
     Render(Box<RenderArgs>),
 }
@@ -155,7 +167,7 @@ pub struct GenerateArgs {
     pub outputs: Vec<PathBuf>,
     /// How meshes, raw height maps and tiles are written
     #[command(flatten)]
-    pub export: crate::export::options::ExportArgs,
+    pub export: ExportArgs,
     /// Print nothing but errors
     #[arg(short, long)]
     pub quiet: bool,
@@ -165,7 +177,7 @@ pub struct GenerateArgs {
 }
 
 /// Arguments of `seasynth render`; values are kept as typed and checked in
-/// `render::command`, so every bad value gets the same one-line error.
+/// `commands::render`, so every bad value gets the same one-line error.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     #[command(flatten)]

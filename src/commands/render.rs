@@ -6,14 +6,14 @@ use std::time::Instant;
 
 use anyhow::Result;
 
-use super::camera::{Camera, View, triple};
-use super::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
-use super::{MAX_IMAGE_SIDE, MAX_SPP, RenderOptions, lighting_for, scene_of};
 use crate::cli::RenderArgs;
 use crate::config::Params;
 use crate::error::{Error, ParamError};
 use crate::export::Staged;
 use crate::grid::Grid;
+use crate::render::camera::{Camera, View, triple};
+use crate::render::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
+use crate::render::{MAX_IMAGE_SIDE, MAX_SPP, RenderOptions, lighting_for, scene_of};
 
 /// Renders with fewer rays than this show no progress bar.
 const PROGRESS_MIN_RAYS: u64 = 1 << 20;
@@ -201,7 +201,7 @@ impl Request {
     }
 
     /// The camera: the view's, then the flags over it.
-    fn camera(&self, scene: &super::Scene) -> Result<Camera, ParamError> {
+    fn camera(&self, scene: &crate::render::Scene) -> Result<Camera, ParamError> {
         let fov = self.fov_x_rad.unwrap_or(self.view.fov_x_rad());
         let mut c = self.view.camera(scene, self.width, self.height, fov);
         if let Some(p) = self.position {
@@ -247,7 +247,7 @@ fn parse_reflection(s: &str) -> Result<Reflection, ParamError> {
 /// and whether it is periodic.
 fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
     let Some(from) = &args.from else {
-        let params = crate::app::resolve_params(&args.field)?;
+        let params = crate::commands::common::resolve_params(&args.field)?;
         let [nx, ny] = params.grid.size.0;
         crate::limits::check_memory(
             footprint(&params).bytes(params.grid_spec().len() as u64, 1),
@@ -276,7 +276,7 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
         )
         .into());
     }
-    let (grid, sidecar) = crate::analyze::load(from)?;
+    let (grid, sidecar) = crate::io::load(from)?;
     let params: Option<Params> = sidecar
         .as_ref()
         .and_then(|d| d.get("params"))
@@ -304,7 +304,7 @@ fn stage_output(path: &Path) -> Result<Staged, Error> {
 
 /// Runs `seasynth render`.
 pub fn run(args: RenderArgs) -> Result<()> {
-    crate::app::set_threads(args.threads)?;
+    crate::commands::common::set_threads(args.threads)?;
     let req = Request::parse(&args).map_err(Error::from)?;
     // The output is staged before any work: a bad path fails now, and an error later
     // leaves no partial file.
@@ -333,13 +333,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
         ..RenderOptions::new(camera)
     };
     let rays = req.width as u64 * req.height as u64 * req.spp as u64;
-    let bar = crate::jobs::progress_bar(
+    let bar = crate::pipeline::jobs::progress_bar(
         req.height as u64,
         "rendering {bar:40} {pos}/{len} rows, {eta} left",
         !args.quiet && rays >= PROGRESS_MIN_RAYS,
     );
     let start = Instant::now();
-    let image = super::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
+    let image = crate::render::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     crate::export::rgb8::write(staged, &image.rgb, (image.width, image.height))?;
@@ -359,34 +359,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
         eprintln!("wrote {}", args.output.display());
     }
     Ok(())
-}
-
-/// The default preview of a synthesized field (`generate -o NAME.preview.png`, `animate
-/// --format preview`): exact spectral slopes when the state has them for the height map
-/// itself (an FFT or filtered-noise field that is not resampled by choppiness).
-pub fn preview_of(
-    params: &Params,
-    synthesis: &crate::field::Synthesis,
-) -> Result<super::RgbImage, crate::error::Error> {
-    let grid = &synthesis.grid;
-    let periodic = params.is_periodic();
-    let opts =
-        super::RenderOptions::preview(grid, params.wind.direction_deg.to_radians(), periodic);
-    let slopes = synthesis
-        .surface
-        .slopes
-        .as_ref()
-        .filter(|_| exact_slopes_apply(params))
-        .map(|[x, y]| (&x[..], &y[..]));
-    super::render(grid, slopes, periodic, &opts)
-}
-
-/// True when spectral slopes are the slopes of the height map: one spectrum, not resampled.
-pub fn exact_slopes_apply(params: &Params) -> bool {
-    matches!(
-        params.method,
-        crate::config::Method::Fft | crate::config::Method::FilteredNoise
-    ) && params.motion.choppiness == 0.0
 }
 
 /// Peak memory of rendering a synthesized field of `params`: the larger of the synthesis

@@ -1,0 +1,16 @@
+//! `seasynth analyze`.
+
+use std::path::PathBuf;
+
+/// Command-line arguments of `seasynth analyze`.
+#[derive(Debug, clap::Args)]
+pub struct AnalyzeArgs {
+    /// Height map: a float TIFF in meters, or a 16-bit PNG with its sidecar NAME.json
+    pub file: PathBuf,
+    /// Print one JSON object on stdout instead of the report
+    #[arg(long)]
+    pub json: bool,
+    /// Write a log-log plot of the measured (and target) radial spectrum S(k), 800×500 PNG
+    #[arg(long, value_name = "PNG")]
+    pub plot: Option<PathBuf>,
+}

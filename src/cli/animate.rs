@@ -1,0 +1,35 @@
+//! `seasynth animate`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::FieldArgs;
+
+#[derive(Debug, Args)]
+pub struct AnimateArgs {
+    #[command(flatten)]
+    pub field: FieldArgs,
+    /// Number of frames
+    #[arg(long, default_value_t = 30)]
+    pub frames: usize,
+    /// Output folder (created if missing)
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub dir: PathBuf,
+    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp,
+    /// preview (a rendered view)
+    #[arg(long, value_delimiter = ',', default_value = "png")]
+    pub format: Vec<String>,
+    /// Skip frames whose files are all there (files appear only when complete)
+    #[arg(long)]
+    pub resume: bool,
+    /// Frames computed at once (default: cores, limited by memory)
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Worker threads (default: all cores); results do not depend on it
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}

@@ -1,0 +1,51 @@
+//! `seasynth batch`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::{ExportArgs, FieldArgs};
+
+#[derive(Debug, Args)]
+pub struct BatchArgs {
+    #[command(flatten)]
+    pub field: FieldArgs,
+    /// KEY=A,B,C or KEY=START:STOP:STEP (STOP excluded) over any parameter (flag name or
+    /// preset key); several sweeps give their cartesian product
+    #[arg(long, value_name = "KEY=VALUES")]
+    pub sweep: Vec<String>,
+    /// A TOML manifest: base preset, [set] overrides, [sweep] tables, [[job]] entries
+    #[arg(long, value_name = "FILE.toml")]
+    pub manifest: Option<PathBuf>,
+    /// Output folder (created if missing); with --merge-index, where the merged index goes
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub dir: Option<PathBuf>,
+    /// File name template: {index} and {KEY} for any key (default: the index and every swept key)
+    #[arg(long, value_name = "TEMPLATE")]
+    pub name: Option<String>,
+    /// Files per job: png, tif, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp,
+    /// preview (default png)
+    #[arg(long, value_delimiter = ',')]
+    pub format: Vec<String>,
+    /// Jobs computed at once (default: cores, limited by memory)
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+    /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1)
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+    /// Keep jobs whose files and sidecar are complete and match the job's parameters
+    #[arg(long)]
+    pub resume: bool,
+    /// Merge the shard indexes found in these folders into one index.csv and index.json
+    #[arg(long, value_name = "DIR", num_args = 1..)]
+    pub merge_index: Vec<PathBuf>,
+    /// How meshes, raw height maps and tiles are written
+    #[command(flatten)]
+    pub export: ExportArgs,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Worker threads (default: all cores); results do not depend on it
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+}

@@ -1,0 +1,54 @@
+//! How meshes, raw height maps and tiles are written: the export flags as typed.
+
+use clap::Args;
+
+/// The export flags of `generate`, as typed; `commands::common::export_options` checks them.
+#[derive(Debug, Args, Clone, Default)]
+pub struct ExportArgs {
+    /// Up axis of .obj meshes: y (default; X = x, Y = height, Z = −y) or z (X = x, Y = y, Z = height)
+    #[arg(long, value_name = "y|z")]
+    pub up: Option<String>,
+    /// Mesh vertices at every K-th sample (and the far edge); default 1
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub mesh_step: Option<String>,
+    /// Factor on the heights of .obj/.glb meshes (normals follow); default 1
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub vertical_scale: Option<String>,
+    /// Split .obj/.glb/.r16/.r32 outputs into C×R tiles NAME_x{i}_y{j}.EXT sharing their edges
+    #[arg(long, value_name = "CxR", allow_hyphen_values = true)]
+    pub tiles: Option<String>,
+    /// Texture coordinates of mesh tiles: global (default: 0..1 over the field) or tile (0..1 per tile)
+    #[arg(long, value_name = "global|tile")]
+    pub tile_uv: Option<String>,
+    /// Mesh tiles of a periodic field written relative to their own corner, equal in size,
+    /// with their wrap-around neighbours in the tile index
+    #[arg(long)]
+    pub periodic_tiles: bool,
+    /// Resample .r16/.r32 to a legal terrain size: unity (2ⁿ+1) or unreal (Unreal's
+    /// recommended sizes; .r16 in Unreal's encoding with a Z scale)
+    #[arg(long, value_name = "unity|unreal")]
+    pub engine: Option<String>,
+    /// Byte order of .r16/.r32: little (default) or big
+    #[arg(long, value_name = "little|big")]
+    pub byte_order: Option<String>,
+}
+
+impl ExportArgs {
+    /// The flags given, as (flag, text) in a fixed order (`--periodic-tiles` with an empty
+    /// text).
+    pub fn flags(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("--up", self.up.as_deref()),
+            ("--mesh-step", self.mesh_step.as_deref()),
+            ("--vertical-scale", self.vertical_scale.as_deref()),
+            ("--tiles", self.tiles.as_deref()),
+            ("--tile-uv", self.tile_uv.as_deref()),
+            ("--periodic-tiles", self.periodic_tiles.then_some("")),
+            ("--engine", self.engine.as_deref()),
+            ("--byte-order", self.byte_order.as_deref()),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.map(|v| (k, v)))
+        .collect()
+    }
+}

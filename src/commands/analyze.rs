@@ -1,0 +1,270 @@
+//! `seasynth analyze`: statistics and the measured wavenumber spectrum of a height map,
+//! compared with the spectrum it was generated from when its sidecar says so (the
+//! conventions are stated in [`crate::measure`]).
+
+use std::path::Path;
+
+use serde::Serialize;
+use serde_json::Value;
+
+use crate::cli::AnalyzeArgs;
+use crate::config::Params;
+use crate::error::Error;
+use crate::export::Staged;
+use crate::grid::GridSpec;
+use crate::io::{ImageKind, load_detailed};
+use crate::measure::{Analysis, COMPARABLE_METHODS, Target, analyze};
+use crate::plot::analysis::{PLOT_SIZE, render_plot};
+
+/// What `analyze --json` prints: the file, then the [`Analysis`].
+#[derive(Serialize)]
+struct Report<'a> {
+    file: String,
+    format: ImageKind,
+    spacing_source: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    quantization_step_m: Option<f64>,
+    #[serde(flatten)]
+    analysis: &'a Analysis,
+}
+
+/// Runs `seasynth analyze`.
+pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
+    // The plot file is staged before any work: a bad path fails now, and an error later
+    // leaves no partial file.
+    let plot = args
+        .plot
+        .as_deref()
+        .map(|p| stage_plot(p, &args.file))
+        .transpose()?;
+    let loaded = load_detailed(&args.file)?;
+    let (target, note) = match &loaded.sidecar {
+        Some(doc) => match target_from_sidecar(doc, &loaded.grid.spec) {
+            Ok(t) => (Some(t), None),
+            Err(note) => (None, Some(note)),
+        },
+        None => (
+            None,
+            Some("no sidecar, so there is no target spectrum".to_string()),
+        ),
+    };
+    let mut analysis = analyze(&loaded.grid, target.as_ref());
+    if analysis.target_note.is_none() {
+        analysis.target_note = note;
+    }
+    let report = Report {
+        file: args.file.display().to_string(),
+        format: loaded.kind,
+        spacing_source: loaded.spacing_source,
+        quantization_step_m: loaded.quantization_step_m,
+        analysis: &analysis,
+    };
+    if let Some(staged) = plot {
+        let name = args
+            .file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| report.file.clone());
+        let image = render_plot(&analysis, &name).map_err(|e| Error::io(&staged.path, e))?;
+        crate::export::rgb8::write(staged, &image, PLOT_SIZE)?;
+    }
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        serde_json::to_writer(&mut out, &report)?;
+        std::io::Write::write_all(&mut out, b"\n")?;
+    } else {
+        std::io::Write::write_all(&mut out, human_report(&report).as_bytes())?;
+    }
+    Ok(())
+}
+
+/// Checks a plot path (a `.png`, not the analyzed file) and stages it.
+fn stage_plot(path: &Path, input: &Path) -> Result<Staged, Error> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref() != Some("png") {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "plots are PNG images: the file name must end in .png".into(),
+        });
+    }
+    let same = match (std::fs::canonicalize(path), std::fs::canonicalize(input)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => path == input,
+    };
+    if same {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: "is the file being analyzed".into(),
+        });
+    }
+    Staged::create(path)
+}
+
+fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
+    match v {
+        Some(v) => format!("{v:.digits$}{unit}"),
+        None => "-".into(),
+    }
+}
+
+/// The short report printed without `--json`.
+fn human_report(r: &Report) -> String {
+    let a = r.analysis;
+    let mut s = String::new();
+    let kind = match r.format {
+        ImageKind::Png16 => "16-bit PNG",
+        ImageKind::TiffF32 => "float TIFF",
+    };
+    s += &format!(
+        "{}: {kind}, {}×{} samples, spacing {} m × {} m ({}), extent {} m × {} m\n",
+        r.file, a.nx, a.ny, a.dx_m, a.dy_m, r.spacing_source, a.extent_m[0], a.extent_m[1]
+    );
+    s += &format!(
+        "heights: mean {:.4} m, std {:.4} m, Hs (4·std) {:.4} m, min {:.4} m, max {:.4} m\n",
+        // A mean of −0.00001 m would print as "-0.0000".
+        if a.mean_m.abs() < 5e-5 { 0.0 } else { a.mean_m },
+        a.std_m,
+        a.hs_m,
+        a.min_m,
+        a.max_m
+    );
+    if let Some(q) = r.quantization_step_m {
+        s += &format!("16-bit step: {q:.3e} m\n");
+    }
+    s += &format!(
+        "spectral peak: wavelength {} (k = {}), direction {} modulo 180°, concentration {}\n",
+        opt(a.peak_wavelength_m, 2, " m"),
+        opt(a.peak_k_rad_per_m, 4, " rad/m"),
+        opt(a.peak_direction_deg, 1, "°"),
+        opt(a.peak_direction_concentration, 2, "")
+    );
+    match (&a.target, &a.target_note) {
+        (Some(t), _) => {
+            s += &format!(
+                "target ({} method, {} spectrum): std {:.4} m, Hs {:.4} m, peak wavelength {}\n",
+                t.method,
+                t.spectrum,
+                t.target_std_m,
+                t.target_hs_m,
+                opt(t.target_peak_wavelength_m, 2, " m")
+            );
+            s += &format!(
+                "measured/target variance {}, RMS log10 spectrum difference {} over {} bins\n",
+                opt(t.variance_ratio, 3, ""),
+                opt(t.log10_rms_difference, 3, ""),
+                t.bins_compared
+            );
+        }
+        (None, Some(note)) => s += &format!("target: none ({note})\n"),
+        (None, None) => s += "target: none\n",
+    }
+    s += &format!(
+        "radial spectrum: {} bins of {:.4} rad/m (--json for the values)\n",
+        a.radial_spectrum.len(),
+        a.dk_rad_per_m
+    );
+    s
+}
+
+/// The target described by a sidecar's `params`, for a field on `spec`; `Err` says in one
+/// sentence why there is none.
+pub fn target_from_sidecar(sidecar: &Value, spec: &GridSpec) -> Result<Target, String> {
+    let raw = sidecar
+        .get("params")
+        .ok_or("the sidecar has no `params`, so there is no target spectrum")?;
+    let params: Params = serde_json::from_value(raw.clone())
+        .map_err(|e| format!("the sidecar's `params` do not parse ({e}); no target"))?;
+    let method = params.method.name().to_string();
+    if !COMPARABLE_METHODS.contains(&method.as_str()) {
+        return Err(match method.as_str() {
+            "hybrid" => "method hybrid: only the alpha = 1 region follows the spectrum, \
+                         so the whole field has no target spectrum"
+                .to_string(),
+            m => format!(
+                "method {m} does not follow a spectrum model; targets exist for {}",
+                COMPARABLE_METHODS.join(", ")
+            ),
+        });
+    }
+    params
+        .validate()
+        .map_err(|e| format!("the sidecar's `params` are not valid ({e}); no target"))?;
+    let pspec = params.grid_spec();
+    if (pspec.nx, pspec.ny) != (spec.nx, spec.ny) {
+        return Err(format!(
+            "the sidecar's `params` describe a {}×{} grid but the image is {}×{}; no target",
+            pspec.nx, pspec.ny, spec.nx, spec.ny
+        ));
+    }
+    if !crate::measure::same_length(pspec.extent_x_m, spec.extent_x_m)
+        || !crate::measure::same_length(pspec.extent_y_m, spec.extent_y_m)
+    {
+        return Err(format!(
+            "the sidecar's `params` describe a {} m × {} m extent but the spacing gives {} m × {} m; no target",
+            pspec.extent_x_m, pspec.extent_y_m, spec.extent_x_m, spec.extent_y_m
+        ));
+    }
+    let model = serde_json::to_value(params.spectrum.model)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_else(|| "?".into());
+    let (spectrum, _dispersion) = crate::field::spectrum_model(&params)
+        .map_err(|e| format!("the sidecar's spectrum cannot be built ({e}); no target"))?;
+    Ok(Target {
+        spectrum,
+        spec: pspec,
+        method,
+        model,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::spectrum::tests::cosine;
+
+    #[test]
+    fn a_target_on_another_grid_is_ignored_with_a_note() {
+        let params = Params::default();
+        let (spectrum, _) = crate::field::spectrum_model(&params).unwrap();
+        let t = Target {
+            spectrum,
+            spec: params.grid_spec(),
+            method: "fft".into(),
+            model: "phillips".into(),
+        };
+        let a = analyze(&cosine(16, 16.0, 4.0, 0.0, 1.0), Some(&t));
+        assert!(a.target.is_none());
+        assert!(a.target_note.unwrap().contains("another grid"));
+    }
+
+    #[test]
+    fn the_expected_spectrum_of_a_synthesized_field_matches_its_measured_one_on_average() {
+        // Average of three seeds of the FFT method at 128² over 128 m at 3 m/s: the
+        // measured variance is the sum of |h̃(k)|², whose expectation is the target.
+        const RATIO_TOL: f64 = 0.1;
+        let mut ratio = 0.0;
+        for seed in 1..=3 {
+            let mut p = Params {
+                method: crate::config::Method::Fft,
+                seed,
+                ..Params::default()
+            };
+            p.grid.size = crate::config::Size2([128, 128]);
+            p.grid.extent_m = crate::config::Extent2([128.0, 128.0]);
+            p.wind.speed_mps = 3.0;
+            let g = crate::field::synthesize(&p).unwrap().grid;
+            let side = serde_json::json!({ "params": serde_json::to_value(&p).unwrap() });
+            let t = target_from_sidecar(&side, &g.spec).unwrap();
+            let a = analyze(&g, Some(&t));
+            ratio += a.target.unwrap().variance_ratio.unwrap() / 3.0;
+        }
+        assert!(
+            (ratio - 1.0).abs() < RATIO_TOL,
+            "mean variance ratio {ratio}"
+        );
+    }
+}

@@ -1,0 +1,10 @@
+//! Measuring a height field: statistics and the measured wavenumber spectrum, used by
+//! `seasynth analyze` and by the trochoid sea's fit of its turbulence.
+
+pub mod slopes;
+pub mod spectrum;
+
+pub use spectrum::{
+    Analysis, COMPARABLE_METHODS, COMPARE_FLOOR, NORMALIZATION, RadialBin, Target, TargetSummary,
+    analyze, same_length,
+};

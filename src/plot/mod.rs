@@ -1,0 +1,31 @@
+//! Plots: the measured spectrum of `analyze --plot` and the model spectra of
+//! `spectrum --plot`, drawn into RGB buffers (written by `export::rgb8`).
+
+pub mod analysis;
+pub mod spectrum;
+
+/// A drawing error as an I/O error (a failure while working: exit code 1).
+pub fn draw_err<E: std::fmt::Display>(e: E) -> std::io::Error {
+    std::io::Error::other(format!("cannot draw the plot: {e}"))
+}
+
+/// The legend box both plot commands draw: at `position`, 15-pt text on a
+/// translucent white box with a gray border.
+pub fn draw_legend<'a, DB, CT>(
+    chart: &mut plotters::chart::ChartContext<'a, DB, CT>,
+    position: plotters::chart::SeriesLabelPosition,
+) -> std::io::Result<()>
+where
+    DB: plotters::prelude::DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate,
+{
+    use plotters::style::{Color, RGBColor, WHITE};
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(("sans-serif", 15))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+        .map_err(draw_err)
+}
