@@ -34,6 +34,15 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method, in the order `--method` lists them.
+    pub const ALL: [Method; 5] = [
+        Method::Hybrid,
+        Method::Fft,
+        Method::FilteredNoise,
+        Method::Perlin,
+        Method::Trochoid,
+    ];
+
     pub fn name(&self) -> &'static str {
         match self {
             Method::Hybrid => "hybrid",
