@@ -321,22 +321,6 @@ pub struct OutputParams {
     pub height_range: Option<Range2>,
 }
 
-impl Params {
-    /// True when the field repeats over its extent (sample N equals sample 0): FFT and
-    /// filtered-noise fields, tileable Perlin noise, and the hybrid of the two under a
-    /// constant α. A ramp, radial or image α breaks the period.
-    pub fn is_periodic(&self) -> bool {
-        match self.method {
-            Method::Fft | Method::FilteredNoise => true,
-            Method::Perlin => self.perlin.tileable,
-            Method::Trochoid => false,
-            Method::Hybrid => {
-                self.perlin.tileable && matches!(self.blend.alpha, AlphaConfig::Constant { .. })
-            }
-        }
-    }
-}
-
 /// Phillips A of the default preset: gives the `li-tian` setting (512 m, 1 m grid,
 /// 7 m/s) an expected std of 0.30 m, i.e. Hs ≈ 1.2 m, the Hs of seasynth's fully
 /// developed Pierson–Moskowitz sea at 7 m/s (4√m0 with fm = 0.13 g/U).

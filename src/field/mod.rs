@@ -1,4 +1,6 @@
-//! Height fields: each method computes a [`Grid`] of heights in meters.
+//! Height fields: each method computes a [`Grid`] of heights in meters. The methods are
+//! one type each behind [`HeightMethod`] (in [`method`]), built by [`method_for`];
+//! [`Synthesizer`] prepares one for its frames and [`synthesize`] computes one field.
 
 pub mod dynamics;
 pub mod fft;

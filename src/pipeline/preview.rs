@@ -11,7 +11,7 @@ pub fn preview_of(
     synthesis: &crate::field::Synthesis,
 ) -> Result<crate::render::RgbImage, crate::error::Error> {
     let grid = &synthesis.grid;
-    let periodic = params.is_periodic();
+    let periodic = crate::field::method_for(params).is_periodic();
     let opts = crate::render::RenderOptions::preview(
         grid,
         params.wind.direction_deg.to_radians(),

@@ -73,11 +73,15 @@ impl HeightMethod for FftSea {
         let (grid, surface, h0max_m) = self.field(time_s, extras);
         let mut info = self.info().clone();
         info.h0max_m = Some(h0max_m);
-        finish(grid, info, surface, extras, self.params.is_periodic(), true)
+        finish(grid, info, surface, extras, true, true)
     }
 
     fn bytes_per_sample(&self) -> u64 {
         10
+    }
+
+    fn is_periodic(&self) -> bool {
+        true
     }
 
     fn exact_slopes(&self) -> bool {

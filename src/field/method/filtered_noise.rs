@@ -55,11 +55,15 @@ impl HeightMethod for FilteredNoise {
         let half = filtered_spectrum(&spectral.setup(time_s), Some(motion));
         let (grid, surface) = spectral.heights(half, extras);
         let info = spectral.info.clone();
-        finish(grid, info, surface, extras, self.params.is_periodic(), true)
+        finish(grid, info, surface, extras, true, true)
     }
 
     fn bytes_per_sample(&self) -> u64 {
         10
+    }
+
+    fn is_periodic(&self) -> bool {
+        true
     }
 
     fn exact_slopes(&self) -> bool {

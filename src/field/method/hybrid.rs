@@ -2,7 +2,7 @@
 //! the weight α (eq. 10), h = α·h_fft + (1 − α)·b·h_perlin.
 
 use super::{FftSea, HeightMethod, PerlinNoise, finish};
-use crate::config::{Beta, Params};
+use crate::config::{AlphaConfig, Beta, Params};
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::Extras;
@@ -70,17 +70,18 @@ impl HeightMethod for Hybrid {
         let b = self.beta_m(&grid, h0max_m);
         info.beta_m = Some(b);
         blend_in_place(&mut grid, self.noise.noise(), alpha, b as f32);
-        finish(
-            grid,
-            info,
-            surface,
-            extras,
-            self.params.is_periodic(),
-            false,
-        )
+        finish(grid, info, surface, extras, self.is_periodic(), false)
     }
 
     fn bytes_per_sample(&self) -> u64 {
         14
+    }
+
+    /// Periodic when both fields are and α is constant (a ramp, radial or image α breaks
+    /// the period).
+    fn is_periodic(&self) -> bool {
+        self.sea.is_periodic()
+            && self.noise.is_periodic()
+            && matches!(self.params.blend.alpha, AlphaConfig::Constant { .. })
     }
 }

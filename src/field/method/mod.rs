@@ -52,6 +52,10 @@ pub trait HeightMethod: Send + Sync {
     /// which adds choppiness, derived fields and outputs).
     fn bytes_per_sample(&self) -> u64;
 
+    /// True when the field is periodic over the extent (tileable: meshes and tiles may
+    /// wrap, slopes are taken across the edges).
+    fn is_periodic(&self) -> bool;
+
     /// True when PNG and TIFF outputs may be computed and written a batch of rows at a
     /// time (`pipeline::stream`), so that they may exceed memory.
     fn streams_rows(&self) -> bool {

@@ -61,11 +61,21 @@ impl HeightMethod for PerlinNoise {
         let amp = self.params.perlin.amplitude_m as f32;
         let grid = Grid::new(self.spec(), self.noise().iter().map(|v| v * amp).collect());
         let info = self.info().clone();
-        let periodic = self.params.is_periodic();
-        finish(grid, info, Surface::default(), extras, periodic, false)
+        finish(
+            grid,
+            info,
+            Surface::default(),
+            extras,
+            self.is_periodic(),
+            false,
+        )
     }
 
     fn bytes_per_sample(&self) -> u64 {
         10
+    }
+
+    fn is_periodic(&self) -> bool {
+        self.params.perlin.tileable
     }
 }

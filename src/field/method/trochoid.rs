@@ -38,20 +38,16 @@ impl HeightMethod for TrochoidMethod {
             .as_ref()
             .expect("prepared before the first frame");
         let grid = sea.grid(&self.params.grid_spec(), time_s);
-        let periodic = self.params.is_periodic();
-        finish(
-            grid,
-            info.clone(),
-            Surface::default(),
-            extras,
-            periodic,
-            true,
-        )
+        finish(grid, info.clone(), Surface::default(), extras, false, true)
     }
 
     fn bytes_per_sample(&self) -> u64 {
         // Held in memory only when not streamed (the field and its outputs).
         8
+    }
+
+    fn is_periodic(&self) -> bool {
+        false
     }
 
     fn streams_rows(&self) -> bool {
