@@ -25,8 +25,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let (x, y) = (x0 + along * c - across * s, y0 + along * s + across * c);
             sea.height_at(x, y, t) as f64
         };
-        let (bow_port, bow_star) = (at(HALF_LENGTH_M, HALF_BEAM_M), at(HALF_LENGTH_M, -HALF_BEAM_M));
-        let (aft_port, aft_star) = (at(-HALF_LENGTH_M, HALF_BEAM_M), at(-HALF_LENGTH_M, -HALF_BEAM_M));
+        let (bow_port, bow_star) = (
+            at(HALF_LENGTH_M, HALF_BEAM_M),
+            at(HALF_LENGTH_M, -HALF_BEAM_M),
+        );
+        let (aft_port, aft_star) = (
+            at(-HALF_LENGTH_M, HALF_BEAM_M),
+            at(-HALF_LENGTH_M, -HALF_BEAM_M),
+        );
         let heave = (bow_port + bow_star + aft_port + aft_star) / 4.0;
         let pitch = ((bow_port + bow_star - aft_port - aft_star) / 2.0)
             .atan2(2.0 * HALF_LENGTH_M)
