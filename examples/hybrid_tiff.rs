@@ -23,8 +23,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Or written to files (format by extension) with a sidecar that regenerates them.
     std::fs::create_dir_all("out")?;
-    let path = PathBuf::from("out/example-hybrid.tif");
-    seasynth::write_field(&params, &[path.clone()], field)?;
-    println!("wrote {}", path.display());
+    let paths = [PathBuf::from("out/example-hybrid.tif")];
+    let written = seasynth::write_field(&params, &paths, field)?;
+    for f in &written.files {
+        println!("wrote {}", f.display());
+    }
     Ok(())
 }
