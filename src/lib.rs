@@ -1,4 +1,26 @@
 //! seasynth: ocean-wave and terrain height maps from wave spectra and Perlin noise.
+//!
+//! Heights are in meters on a grid of N×M samples over Lx×Ly meters, sample (i, j) at
+//! x = i·Lx/N, y = j·Ly/M. [`Params`] holds everything that fixes a field (a preset,
+//! then any change); [`synthesize`] computes it; [`write_field`] writes it as
+//! `seasynth generate` does, format by extension, with a sidecar that regenerates it.
+//!
+//! ```
+//! use seasynth::config::{Extent2, Size2};
+//!
+//! let mut params = seasynth::Params::preset("mastin-1987")?;
+//! params.grid.size = Size2([64, 64]);
+//! params.grid.extent_m = Extent2([256.0, 256.0]);
+//! let field = seasynth::synthesize(&params)?;
+//! let stats = field.grid.stats();
+//! assert_eq!(field.grid.data.len(), 64 * 64);
+//! assert!(stats.hs_m > 0.0 && (stats.hs_m - 4.0 * stats.std_m).abs() < 1e-9);
+//! # Ok::<(), seasynth::Error>(())
+//! ```
+//!
+//! The same seed and parameters give the same bits on any number of threads. The
+//! layers, from the command line down to the numeric core, are described in
+//! `docs/architecture.md`; each imports only the layers below it.
 
 pub mod cli;
 pub mod commands;
