@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use crate::config::{Method, Params};
 use crate::error::Error;
 use crate::export::sidecar::{self, FileEntry, MappingInfo, Sidecar};
-use crate::export::{Describe, Format, HeightMapping, Output, OutputKind, RowSink};
+use crate::export::{Describe, Format, HeightMapping, Output, OutputKind, RowSink, Staged};
 use crate::field::SynthesisInfo;
 use crate::field::trochoid::{Frame, RowScratch, TrochoidSea};
 use crate::grid::{GridSpec, Stats};
@@ -170,7 +170,7 @@ pub fn generate(
     }
     let staged_sides = stems
         .iter()
-        .map(|s| crate::export::Staged::create(s))
+        .map(|s| Staged::create(s))
         .collect::<Result<Vec<_>, _>>()?;
 
     let sea = TrochoidSea::new(params)?;
@@ -179,8 +179,10 @@ pub fn generate(
     // Writers without a mapping (TIFF) first: their pass also finds the range the others
     // need.
     outputs.sort_by_key(|o| o.exporter.uses_mapping());
-    let needs_range_pass =
-        params.output.height_range.is_none() && outputs.iter().all(|o| o.exporter.uses_mapping());
+    let mapped = |o: &Output| o.exporter.uses_mapping();
+    let needs_range_pass = params.output.height_range.is_none()
+        && outputs.iter().any(mapped)
+        && outputs.iter().all(mapped);
     let passes = outputs.len() + needs_range_pass as usize;
     let bar = crate::pipeline::jobs::progress_bar(
         (passes * spec.ny) as u64,
