@@ -2,12 +2,11 @@
 //! compared with the spectrum it was generated from when its sidecar says so (the
 //! conventions are stated in [`crate::measure`]).
 
-use std::path::Path;
-
 use serde::Serialize;
 use serde_json::Value;
 
 use crate::cli::AnalyzeArgs;
+use crate::commands::common::PLOTS;
 use crate::config::Params;
 use crate::error::Error;
 use crate::export::Staged;
@@ -35,7 +34,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
     let plot = args
         .plot
         .as_deref()
-        .map(|p| stage_plot(p, &args.file))
+        .map(|p| Staged::create_checked(p, &PLOTS, &[(&args.file, "is the file being analyzed")]))
         .transpose()?;
     let loaded = load_detailed(&args.file)?;
     let (target, note) = match &loaded.sidecar {
@@ -76,31 +75,6 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(&mut out, human_report(&report).as_bytes())?;
     }
     Ok(())
-}
-
-/// Checks a plot path (a `.png`, not the analyzed file) and stages it.
-fn stage_plot(path: &Path, input: &Path) -> Result<Staged, Error> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("png") {
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message: "plots are PNG images: the file name must end in .png".into(),
-        });
-    }
-    let same = match (std::fs::canonicalize(path), std::fs::canonicalize(input)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => path == input,
-    };
-    if same {
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message: "is the file being analyzed".into(),
-        });
-    }
-    Staged::create(path)
 }
 
 fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {

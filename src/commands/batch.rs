@@ -21,11 +21,12 @@ use crate::config::{Params, Range2};
 use crate::error::{Error, ParamError};
 use crate::export::options::ExportOptions;
 use crate::export::sidecar::JobRecord;
-use crate::export::{Format, HeightMapping, Staged};
+use crate::export::{Format, HeightMapping, OutputKind, Staged};
 use crate::field::Synthesis;
+use crate::pipeline::batch::files::{complete_files, hash_hex, remove_stale_temporaries, suffixes};
 use crate::pipeline::batch::index::{self, Index, Row, Status};
 use crate::pipeline::batch::plan::{self, JobSpec, Manifest, NameTemplate, Shard, Sweep};
-use crate::pipeline::jobs::{self, FileKind, Progress};
+use crate::pipeline::jobs::{self, Progress};
 use crate::pipeline::write::{SidecarExtras, write_field};
 
 /// `DIR/batch.json`: what every shard of the batch shares.
@@ -52,20 +53,6 @@ const KEEP_MAX_BYTES: u64 = 512 << 20;
 
 /// The mapping source recorded in sidecars of jobs whose range the batch computed.
 const BATCH_RANGE: &str = "min..max over every job of the batch";
-
-/// A hash of `bytes` as 16 hex digits (the project's fixed hash, 8 bytes a word).
-fn hash_hex(bytes: &[u8]) -> String {
-    let mut words: Vec<u64> = bytes
-        .chunks(8)
-        .map(|c| {
-            let mut w = [0u8; 8];
-            w[..c.len()].copy_from_slice(c);
-            u64::from_le_bytes(w)
-        })
-        .collect();
-    words.push(bytes.len() as u64);
-    format!("{:016x}", crate::rng::hash_words(&words))
-}
 
 /// One job, resolved.
 struct Job {
@@ -98,45 +85,6 @@ impl Job {
             .map(|s| dir.join(format!("{}.{s}", self.name)))
             .collect()
     }
-}
-
-/// The file name suffix of each `--format` entry, and whether one is a height output
-/// (which carries the sidecar).
-fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
-    let mut out: Vec<String> = Vec::new();
-    let mut height = false;
-    for f in formats {
-        let f = f.trim().to_ascii_lowercase();
-        let suffix = match FileKind::parse(&f) {
-            Ok(FileKind::Png) | Ok(FileKind::Tif) => {
-                height = true;
-                f.clone()
-            }
-            Ok(k) => k.suffix().to_string(),
-            Err(_) => {
-                Format::from_path(Path::new(&format!("x.{f}"))).map_err(|_| {
-                    Error::Param(ParamError {
-                        name: "--format".into(),
-                        allowed: "png, tif, tiff, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp or preview".into(),
-                        got: f.clone(),
-                    })
-                })?;
-                height = true;
-                f.clone()
-            }
-        };
-        if !out.contains(&suffix) {
-            out.push(suffix);
-        }
-    }
-    if !height {
-        return Err(Error::Param(ParamError {
-            name: "--format".into(),
-            allowed: "a list with at least one height output (png, tif, exr, r16, r32, raw, obj or glb), which carries the job's sidecar".into(),
-            got: formats.join(","),
-        }));
-    }
-    Ok(out)
 }
 
 pub fn run(args: BatchArgs) -> Result<()> {
@@ -312,9 +260,12 @@ pub fn run(args: BatchArgs) -> Result<()> {
     // One 16-bit mapping for the whole batch: every job without a height range of its
     // own gets the range over all those jobs' heights (a first pass without files, over
     // every job of every shard, so shards agree), or the earlier run's.
-    let uses_mapping = suffixes
-        .iter()
-        .any(|s| s == "png" || s == "r16" || s == "raw");
+    let uses_mapping = suffixes.iter().any(|s| {
+        matches!(
+            OutputKind::of_path(Path::new(&format!("x.{s}"))),
+            Ok(OutputKind::Height(Format::Png16 | Format::R16))
+        )
+    });
     let needs: Vec<usize> = all
         .iter()
         .filter(|j| {
@@ -590,44 +541,6 @@ pub fn run(args: BatchArgs) -> Result<()> {
     Ok(())
 }
 
-/// The files of a complete job, relative to the folder, and its statistics, from its
-/// sidecar `DIR/NAME.json`: the files the sidecar lists (the height outputs, or their
-/// tiles), the tile index, the maps and previews (`NAME.KIND.ext`, which the sidecar does
-/// not list), then the sidecar. `None` unless the sidecar holds `hash` as the job's
-/// `batch.hash` and every one of those files is there.
-fn complete_files(
-    name: &str,
-    suffixes: &[String],
-    hash: &str,
-    dir: &Path,
-) -> Option<(Vec<String>, crate::grid::Stats)> {
-    let side = format!("{name}.json");
-    let doc: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join(&side)).ok()?).ok()?;
-    if doc.pointer("/batch/hash")?.as_str()? != hash {
-        return None;
-    }
-    let mut files = Vec::new();
-    for f in doc.get("files")?.as_array()? {
-        files.push(f.get("file")?.as_str()?.to_string());
-    }
-    if let Some(t) = doc.get("tiles_index").and_then(|t| t.as_str()) {
-        files.push(t.to_string());
-    }
-    files.extend(
-        suffixes
-            .iter()
-            .filter(|s| s.contains('.'))
-            .map(|s| format!("{name}.{s}")),
-    );
-    files.push(side);
-    if !files.iter().all(|f| dir.join(f).is_file()) {
-        return None;
-    }
-    let stats = serde_json::from_value(doc.get("stats")?.clone()).ok()?;
-    Some((files, stats))
-}
-
 /// The index row of a job complete from an earlier run ([`complete_files`]).
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
@@ -637,74 +550,4 @@ fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> O
         hash: Some(record.hash.clone()),
         ..job.row(Status::Kept)
     })
-}
-
-/// Removes the temporary files a killed run left for these jobs (`.NAME.….part`, the
-/// staging names of `export::Staged`). Only this run's jobs: shards sharing the folder
-/// keep theirs.
-fn remove_stale_temporaries<'a>(dir: &Path, names: impl Iterator<Item = &'a str>) -> Result<()> {
-    let stale =
-        crate::pipeline::batch::files_named(dir, |n| n.starts_with('.') && n.ends_with(".part"))
-            .map_err(|e| Error::io(dir, e))?;
-    if stale.is_empty() {
-        return Ok(());
-    }
-    let names: std::collections::HashSet<&str> = names.collect();
-    for p in stale {
-        let file = p.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-        // `.NAME.SUFFIX.RANDOM.part` or a tile's `.NAME_x0_y0.SUFFIX.RANDOM.part`.
-        let inner = &file[1..file.len() - ".part".len()];
-        let ours = names.iter().any(|n| {
-            inner
-                .strip_prefix(n)
-                .is_some_and(|rest| rest.starts_with('.') || rest.starts_with("_x"))
-        });
-        if ours {
-            std::fs::remove_file(&p).map_err(|e| Error::io(&p, e))?;
-        }
-    }
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn formats_give_suffixes_and_need_a_height_output() {
-        let s = suffixes(&["png".into(), "normal".into(), "tif".into(), "obj".into()]).unwrap();
-        assert_eq!(s, ["png", "normal.png", "tif", "obj"]);
-        assert!(
-            suffixes(&["normal".into()]).is_err(),
-            "no sidecar without a height output"
-        );
-        let e = suffixes(&["gif".into()]).unwrap_err().to_string();
-        assert!(e.contains("gif") && e.contains("png"), "{e}");
-    }
-
-    #[test]
-    fn stale_temporaries_of_other_jobs_are_left_alone() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path();
-        for f in [
-            ".0_a=1.png.X1.part",
-            ".0_a=1_x0_y1.obj.X2.part",
-            ".1_a=2.png.X3.part",
-            ".0_a=10.png.X4.part",
-            "0_a=1.png",
-        ] {
-            std::fs::write(p.join(f), b"x").unwrap();
-        }
-        remove_stale_temporaries(p, ["0_a=1"].into_iter()).unwrap();
-        let mut left: Vec<String> = std::fs::read_dir(p)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        left.sort();
-        assert_eq!(
-            left,
-            [".0_a=10.png.X4.part", ".1_a=2.png.X3.part", "0_a=1.png"],
-            "only job 0_a=1's staging files go"
-        );
-    }
 }

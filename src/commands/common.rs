@@ -7,6 +7,13 @@ use crate::cli::FieldArgs;
 use crate::config::Params;
 use crate::config::layers::{self, Assignment};
 use crate::error::Error;
+use crate::export::Allowed;
+
+/// The files `--plot` and `--plot2d` write.
+pub const PLOTS: Allowed = Allowed {
+    what: "plots are PNG images",
+    extensions: &["png"],
+};
 
 /// Sets the number of worker threads for the whole process.
 pub fn set_threads(threads: Option<usize>) -> Result<()> {

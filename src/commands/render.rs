@@ -1,7 +1,6 @@
 //! `seasynth render`: the command line turned into a field and [`RenderOptions`], the
 //! image rendered with a progress bar and written through a staged file.
 
-use std::path::Path;
 use std::time::Instant;
 
 use anyhow::Result;
@@ -9,7 +8,7 @@ use anyhow::Result;
 use crate::cli::RenderArgs;
 use crate::config::Params;
 use crate::error::{Error, ParamError};
-use crate::export::Staged;
+use crate::export::{Allowed, Staged};
 use crate::grid::Grid;
 use crate::render::camera::{Camera, View, triple};
 use crate::render::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
@@ -291,20 +290,11 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
     })
 }
 
-/// Checks the output path (a `.png`) and stages it.
-fn stage_output(path: &Path) -> Result<Staged, Error> {
-    let png = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if !png {
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message: "previews are 8-bit RGB PNG images: the file name must end in .png".into(),
-        });
-    }
-    Staged::create(path)
-}
+/// The files `render -o` writes.
+const PREVIEWS: Allowed = Allowed {
+    what: "previews are 8-bit RGB PNG images",
+    extensions: &["png"],
+};
 
 /// Runs `seasynth render`.
 pub fn run(args: RenderArgs) -> Result<()> {
@@ -312,7 +302,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let req = Request::parse(&args).map_err(Error::from)?;
     // The output is staged before any work: a bad path fails now, and an error later
     // leaves no partial file.
-    let staged = stage_output(&args.output)?;
+    let staged = Staged::create_checked(&args.output, &PREVIEWS, &[])?;
     let (grid, wind_dir_rad, periodic) = field(&args)?;
     let wrap = req.repeat.unwrap_or(periodic);
     let scene = scene_of(&grid, wind_dir_rad, wrap);

@@ -22,6 +22,7 @@ use anyhow::Result;
 use serde::Serialize;
 
 use crate::cli::SpectrumArgs;
+use crate::commands::common::PLOTS;
 use crate::config::validate::model_name;
 use crate::config::{Params, SpectrumModel};
 use crate::error::{Error, ParamError};
@@ -119,21 +120,6 @@ pub fn csv_text(points: &[Point]) -> String {
     s
 }
 
-/// Checks a plot path (a `.png` file in a writable folder) and stages it.
-fn stage_plot(path: &Path) -> Result<Staged, Error> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("png") {
-        return Err(Error::Output {
-            path: path.to_path_buf(),
-            message: "plots are PNG images: the file name must end in .png".into(),
-        });
-    }
-    Staged::create(path)
-}
-
 /// Runs `seasynth spectrum`.
 pub fn run(args: SpectrumArgs) -> Result<()> {
     // Through `Error`, so a bad value exits with code 2.
@@ -175,8 +161,9 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
         }
     }
     // Stage the plot files before any work: a bad path fails now.
-    let plot = args.plot.as_deref().map(stage_plot).transpose()?;
-    let plot2d = args.plot2d.as_deref().map(stage_plot).transpose()?;
+    let stage = |p: &Path| Staged::create_checked(p, &PLOTS, &[]);
+    let plot = args.plot.as_deref().map(stage).transpose()?;
+    let plot2d = args.plot2d.as_deref().map(stage).transpose()?;
 
     // The numbers first (the directional spectrum of --plot2d takes the model over).
     let text = match (&freqs, &sea) {

@@ -7,7 +7,32 @@ use std::io::{Seek, Write};
 
 use exr::prelude::*;
 
+use super::sidecar::{ExrInfo, Sidecar};
+use super::{Describe, Exporter, FieldOut, Format, WriteSeek};
 use crate::grid::Grid;
+
+/// The OpenEXR writer.
+pub struct Exr;
+
+impl Exporter for Exr {
+    fn format(&self) -> Format {
+        Format::Exr
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        _part: usize,
+        _name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> std::io::Result<()> {
+        write(out, field.grid)
+    }
+
+    fn describe(&self, doc: &mut Sidecar, _cx: &Describe) {
+        doc.exr = Some(ExrInfo::default());
+    }
+}
 
 /// The name of the single channel.
 pub const CHANNEL: &str = "Y";

@@ -15,8 +15,49 @@ use json::validation::Checked::Valid;
 use json::validation::USize64;
 use rayon::prelude::*;
 
-use super::mesh::{Mesh, Tile};
+use super::mesh::{Mesh, MeshLayout, Tile};
 use super::par_rows;
+use super::sidecar::Sidecar;
+use super::{Describe, Exporter, FieldOut, Format, WriteSeek};
+
+/// The binary glTF writer: a mesh layout (+Y up) and its tiles, one file each.
+pub struct Glb {
+    pub layout: MeshLayout,
+    pub tiles: Vec<Tile>,
+}
+
+impl Exporter for Glb {
+    fn format(&self) -> Format {
+        Format::Glb
+    }
+
+    fn tiles(&self) -> Option<&[Tile]> {
+        Some(&self.tiles)
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        part: usize,
+        name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> io::Result<()> {
+        let mesh = Mesh {
+            layout: &self.layout,
+            grid: field.grid,
+            field_slopes: field.slopes,
+        };
+        write_tile(out, &mesh, &self.tiles[part], name)
+    }
+
+    fn describe(&self, doc: &mut Sidecar, _cx: &Describe) {
+        doc.mesh = Some(self.layout.info());
+    }
+
+    fn mesh_layout(&self) -> Option<&MeshLayout> {
+        Some(&self.layout)
+    }
+}
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -137,7 +178,12 @@ fn document(
 
 /// Writes `tile` of `mesh` as a binary glTF file whose mesh and node are named `name`.
 /// Fails (without writing) when the file would pass the format's 4 GiB limit.
-pub fn write_tile<W: Write>(w: &mut W, mesh: &Mesh, tile: &Tile, name: &str) -> io::Result<()> {
+pub fn write_tile<W: Write + ?Sized>(
+    w: &mut W,
+    mesh: &Mesh,
+    tile: &Tile,
+    name: &str,
+) -> io::Result<()> {
     let (nw, nh) = tile.size();
     let (x0, y0) = (tile.vx.0, tile.vy.0);
     let cols = || x0..x0 + nw;

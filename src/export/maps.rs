@@ -26,40 +26,15 @@ pub enum MapKind {
     Displacement,
 }
 
-/// Map names: the inner extension and the outer extension it needs.
-pub const MAP_NAMES: &[(&str, &str, MapKind)] = &[
-    ("normal", "png", MapKind::Normal),
-    ("foam", "png", MapKind::Foam),
-    ("jacobian", "tif", MapKind::Jacobian),
-    ("disp", "tif", MapKind::Displacement),
-];
-
 impl MapKind {
     /// The map `path` names (`x.normal.png` → Normal), or None for other names; an error
-    /// text when the inner name is a map's with the wrong outer extension.
+    /// text when the inner name is a map's with the wrong outer extension. The names are
+    /// those of the one table in [`super::format`].
     pub fn from_path(path: &std::path::Path) -> Result<Option<MapKind>, String> {
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or_default()
-            .to_ascii_lowercase();
-        let mut parts = name.rsplitn(3, '.');
-        let (Some(ext), Some(inner), Some(_stem)) = (parts.next(), parts.next(), parts.next())
-        else {
-            return Ok(None);
-        };
-        for &(n, e, kind) in MAP_NAMES {
-            if inner == n {
-                return if ext == e || (e == "tif" && ext == "tiff") {
-                    Ok(Some(kind))
-                } else {
-                    Err(format!(
-                        "a .{n} map is written as .{n}.{e} (got .{n}.{ext})"
-                    ))
-                };
-            }
-        }
-        Ok(None)
+        Ok(match super::format::inner_kind(path)? {
+            Some(super::OutputKind::Map(kind)) => Some(kind),
+            _ => None,
+        })
     }
 }
 

@@ -36,10 +36,10 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::options::{TileUv, Tiles, UpAxis};
+use super::options::{ExportOptions, TileUv, Tiles, UpAxis};
 
 use crate::error::{Error, Result};
-use crate::grid::Grid;
+use crate::grid::{Grid, GridSpec};
 
 /// The samples along an axis of `n` that become vertices: 0, `step`, 2·`step`, … and the
 /// far edge (`n` when periodic, else `n − 1`). Sample `n` stands for sample 0 at x = L.
@@ -184,6 +184,63 @@ pub struct MeshLayout {
     pub uv: TileUv,
     pub placement: Placement,
     pub periodic: bool,
+}
+
+impl MeshLayout {
+    /// The mesh of a field of `spec` with `options`, `up` the engine's up axis, and its
+    /// tiles (`tiled`; one tile when `None`).
+    pub fn plan(
+        options: &ExportOptions,
+        spec: &GridSpec,
+        periodic: bool,
+        up: UpAxis,
+        tiled: Option<Tiles>,
+    ) -> Result<(Self, Vec<Tile>)> {
+        let layout = MeshLayout {
+            xs: axis_vertices(spec.nx, options.mesh_step, periodic),
+            ys: axis_vertices(spec.ny, options.mesh_step, periodic),
+            step: options.mesh_step,
+            up,
+            vertical_scale: options.vertical_scale,
+            uv: options.tile_uv,
+            placement: if options.periodic_tiles {
+                Placement::Tile
+            } else {
+                Placement::Global
+            },
+            periodic,
+        };
+        let (vx, vy) = (layout.xs.len(), layout.ys.len());
+        let tiles = match tiled {
+            None => vec![Tile::whole(vx, vy)],
+            Some(t) => tiles(vx, vy, t)?,
+        };
+        if options.periodic_tiles {
+            equal_tiles(&layout, &tiles, spec, options.mesh_step)?;
+        }
+        Ok((layout, tiles))
+    }
+}
+
+/// Periodic tiles must all be alike: the same number of equal cells.
+fn equal_tiles(layout: &MeshLayout, tiles: &[Tile], spec: &GridSpec, step: usize) -> Result<()> {
+    let uniform = spec.nx % step == 0 && spec.ny % step == 0;
+    let first = tiles[0].size();
+    if uniform && tiles.iter().all(|t| t.size() == first) {
+        return Ok(());
+    }
+    let columns = tiles.iter().map(|t| t.column).max().unwrap_or(0) + 1;
+    let rows = tiles.len() / columns;
+    Err(Error::Set {
+        origin: "--periodic-tiles".into(),
+        message: format!(
+            "needs equal tiles: --mesh-step {step} must divide the grid size {}x{} and the              tiles {columns}x{rows} the mesh's {}x{} cells",
+            spec.nx,
+            spec.ny,
+            layout.xs.len() - 1,
+            layout.ys.len() - 1
+        ),
+    })
 }
 
 /// The mesh of one field: a layout over a grid.

@@ -9,9 +9,138 @@
 //! tiles, since both compute them from the same samples.
 
 use std::io::{self, Write};
+use std::path::Path;
 
-use super::mesh::{Mesh, Tile};
+use super::mesh::{Mesh, MeshLayout, Placement, Tile};
+use super::options::TileUv;
 use super::par_rows as write_rows;
+use super::sidecar::Sidecar;
+use super::{Describe, Exporter, FieldOut, Format, WriteSeek};
+use crate::grid::Grid;
+
+/// The OBJ writer: a mesh layout, its tiles (one file each) and the sidecar the header
+/// names.
+pub struct Obj {
+    layout: MeshLayout,
+    tiles: Vec<Tile>,
+    /// The file name of the output's sidecar.
+    sidecar: String,
+}
+
+impl Obj {
+    /// The writer of the output `path` laid out as `layout` in `tiles`.
+    pub fn new(layout: MeshLayout, tiles: Vec<Tile>, path: &Path) -> Self {
+        let sidecar = super::sidecar::path_for(path)
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Self {
+            layout,
+            tiles,
+            sidecar,
+        }
+    }
+}
+
+impl Exporter for Obj {
+    fn format(&self) -> Format {
+        Format::Obj
+    }
+
+    fn tiles(&self) -> Option<&[Tile]> {
+        Some(&self.tiles)
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        part: usize,
+        name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> io::Result<()> {
+        let (layout, tile) = (&self.layout, &self.tiles[part]);
+        let mesh = Mesh {
+            layout,
+            grid: field.grid,
+            field_slopes: field.slopes,
+        };
+        let mut header = mesh_header(layout, field.grid, field.about, &self.sidecar);
+        header.push(tile_line(tile, self.tiles.len(), layout.placement));
+        write_tile(out, &mesh, tile, name, &header)
+    }
+
+    fn describe(&self, doc: &mut Sidecar, _cx: &Describe) {
+        doc.mesh = Some(self.layout.info());
+    }
+
+    fn mesh_layout(&self) -> Option<&MeshLayout> {
+        Some(&self.layout)
+    }
+}
+
+/// The comment lines of a mesh file: the frame, the winding, the field.
+fn mesh_header(layout: &MeshLayout, grid: &Grid, about: &str, sidecar: &str) -> Vec<String> {
+    let info = layout.info();
+    let s = &grid.spec;
+    let mut lines = vec![format!(
+        "seasynth {} height-field mesh, meters",
+        env!("CARGO_PKG_VERSION")
+    )];
+    lines.extend(about.lines().map(str::to_string));
+    lines.extend([
+        format!(
+            "grid {}x{} samples over {} x {} m, periodic: {}; parameters in {}",
+            s.nx,
+            s.ny,
+            s.extent_x_m,
+            s.extent_y_m,
+            if layout.periodic { "yes" } else { "no" },
+            sidecar
+        ),
+        format!(
+            "{} with vertical_scale {}",
+            info.coordinates, layout.vertical_scale
+        ),
+        format!("triangles {}; normals: {}", info.winding, info.normals),
+        match layout.uv {
+            TileUv::Global => "uv: u = x / Lx, v = 1 - y / Ly (0..1 over the field)",
+            TileUv::Tile => "uv: 0..1 across each tile, v = 1 at the tile's y = 0 edge",
+        }
+        .to_string(),
+        format!(
+            "mesh step {}: {}x{} vertices (samples 0, {}, {}, ... and the far edge)",
+            layout.step,
+            layout.xs.len(),
+            layout.ys.len(),
+            layout.step,
+            2 * layout.step
+        ),
+    ]);
+    lines
+}
+
+/// The header line naming a tile and its vertex counts.
+fn tile_line(tile: &Tile, count: usize, placement: Placement) -> String {
+    let (w, h) = tile.size();
+    if count == 1 {
+        return format!("{} vertices, {} triangles", w * h, tile.triangle_count());
+    }
+    format!(
+        "tile x{} y{} of {count}: mesh vertices {}..={} x {}..={}; {} vertices, {} triangles; positions {}",
+        tile.column,
+        tile.row,
+        tile.vx.0,
+        tile.vx.1,
+        tile.vy.0,
+        tile.vy.1,
+        w * h,
+        tile.triangle_count(),
+        match placement {
+            Placement::Global => "in field coordinates",
+            Placement::Tile => "relative to the tile's corner",
+        }
+    )
+}
 
 /// Appends `tag` and the three numbers of `v` as one line.
 #[inline]
@@ -28,7 +157,7 @@ fn line3(out: &mut Vec<u8>, f: &mut zmij::Buffer, tag: &[u8], v: [f32; 3]) {
 
 /// Writes `tile` of `mesh` as an OBJ object named `name`, after the comment lines of
 /// `header` (each line gets a leading `# `).
-pub fn write_tile<W: Write>(
+pub fn write_tile<W: Write + ?Sized>(
     w: &mut W,
     mesh: &Mesh,
     tile: &Tile,

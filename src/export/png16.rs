@@ -7,8 +7,50 @@ use std::io::Write;
 
 use rayon::prelude::*;
 
-use super::HeightMapping;
-use crate::grid::Grid;
+use super::{Exporter, FieldOut, Format, HeightMapping, RowSink, WriteSeek};
+use crate::grid::{Grid, GridSpec};
+
+/// The 16-bit grayscale PNG writer, whole or row by row.
+pub struct Png16;
+
+impl Exporter for Png16 {
+    fn format(&self) -> Format {
+        Format::Png16
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        _part: usize,
+        _name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> std::io::Result<()> {
+        write(out, field.grid, field.mapping)
+    }
+
+    fn uses_mapping(&self) -> bool {
+        true
+    }
+
+    fn row_sink(&self) -> Option<&dyn RowSink> {
+        Some(self)
+    }
+}
+
+impl RowSink for Png16 {
+    fn write_rows(
+        &self,
+        out: &mut dyn WriteSeek,
+        spec: &GridSpec,
+        mapping: Option<&HeightMapping>,
+        batch_rows: usize,
+        fill: &mut dyn FnMut(usize, &mut [f32]) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        let mapping =
+            mapping.ok_or_else(|| std::io::Error::other("a 16-bit PNG needs its mapping"))?;
+        write_rows(out, (spec.nx, spec.ny), mapping, batch_rows, fill)
+    }
+}
 
 /// Encodes `grid` as a 16-bit grayscale PNG.
 pub fn write<W: Write>(w: W, grid: &Grid, mapping: &HeightMapping) -> std::io::Result<()> {

@@ -24,10 +24,63 @@ use std::io::{self, Write};
 
 use serde::Serialize;
 
-use super::HeightMapping;
 use super::mesh::{self, Tile};
 use super::options::{ByteOrder, Engine, Tiles};
+use super::sidecar::Sidecar;
+use super::{Describe, Exporter, FieldOut, Format, HeightMapping, WriteSeek};
 use crate::error::Result;
+
+/// The raw writer: `.r16` or `.r32` samples of a lattice, one file per tile.
+pub struct Raw {
+    pub layout: RawLayout,
+    /// `.r16` (else `.r32`).
+    pub r16: bool,
+}
+
+impl Exporter for Raw {
+    fn format(&self) -> Format {
+        if self.r16 { Format::R16 } else { Format::R32 }
+    }
+
+    fn tiles(&self) -> Option<&[Tile]> {
+        Some(&self.layout.tiles)
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        part: usize,
+        _name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> io::Result<()> {
+        let samples = if self.r16 {
+            Samples::R16(super::r16_encoding(self.layout.engine, field.mapping))
+        } else {
+            Samples::R32
+        };
+        let tile = &self.layout.tiles[part];
+        write_tile(out, field.grid, &self.layout, tile, samples)
+    }
+
+    fn uses_mapping(&self) -> bool {
+        self.r16 && self.layout.engine != Some(Engine::Unreal)
+    }
+
+    /// `.r16` and `.r32` of one stem share the layout: one record of both.
+    fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
+        let has = |f: Format| cx.formats.contains(&f);
+        if self.r16 || !has(Format::R16) {
+            let r16 = self
+                .r16
+                .then(|| super::r16_encoding(self.layout.engine, cx.mapping));
+            doc.raw = Some(self.layout.info(cx.spec, r16, has(Format::R32)));
+        }
+    }
+
+    fn raw_layout(&self) -> Option<&RawLayout> {
+        Some(&self.layout)
+    }
+}
 use crate::grid::{Grid, GridSpec};
 
 /// Unity's legal heightmap resolutions.
@@ -214,7 +267,7 @@ pub enum Samples {
 }
 
 /// Writes `tile` of the lattice `layout` over `grid`.
-pub fn write_tile<W: Write>(
+pub fn write_tile<W: Write + ?Sized>(
     w: &mut W,
     grid: &Grid,
     layout: &RawLayout,

@@ -126,6 +126,18 @@ impl GeoTiffInfo {
     }
 }
 
+impl MappingInfo {
+    /// The record of `range`, taken from `source`.
+    pub fn new(range: HeightMapping, source: &'static str) -> Self {
+        Self {
+            range,
+            step_m: range.step_m(),
+            formula: FORMULA,
+            source,
+        }
+    }
+}
+
 pub const FORMULA: &str =
     "value = round((h - min_m) / (max_m - min_m) * 65535), clamped to 0..65535";
 

@@ -14,7 +14,49 @@ use tiff::encoder::colortype::Gray32Float;
 use tiff::encoder::{TiffEncoder, TiffKind};
 use tiff::tags::Tag;
 
+use super::sidecar::{GeoTiffInfo, Sidecar};
+use super::{Describe, Exporter, FieldOut, Format, HeightMapping, RowSink, WriteSeek};
 use crate::grid::{Grid, GridSpec};
+
+/// The float TIFF writer, whole or row by row.
+pub struct Tiff32;
+
+impl Exporter for Tiff32 {
+    fn format(&self) -> Format {
+        Format::Tiff32
+    }
+
+    fn write(
+        &self,
+        field: &FieldOut,
+        _part: usize,
+        _name: &str,
+        out: &mut dyn WriteSeek,
+    ) -> std::io::Result<()> {
+        write(out, field.grid)
+    }
+
+    fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
+        doc.geotiff = Some(GeoTiffInfo::new(cx.spec));
+    }
+
+    fn row_sink(&self) -> Option<&dyn RowSink> {
+        Some(self)
+    }
+}
+
+impl RowSink for Tiff32 {
+    fn write_rows(
+        &self,
+        out: &mut dyn WriteSeek,
+        spec: &GridSpec,
+        _mapping: Option<&HeightMapping>,
+        batch_rows: usize,
+        fill: &mut dyn FnMut(usize, &mut [f32]) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        write_strips(out, spec, batch_rows, fill)
+    }
+}
 
 /// Rows per strip: ~256 KiB strips for 4096-wide grids.
 const ROWS_PER_STRIP: u32 = 16;

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::mesh::{Placement, Tile};
 use super::options::{Engine, TileUv, UpAxis};
-use super::{Format, Output, Plan};
+use super::{Format, Output};
 use crate::grid::GridSpec;
 
 /// The file of tile (`column`, `row`) of the output `path`: `NAME_x{column}_y{row}.EXT`.
@@ -105,7 +105,7 @@ impl TileSet {
         let rows = tiles.len() / columns;
         let file = |t: &Tile| name_of(&tile_path(&output.path, t.column, t.row));
         let mut set = TileSet {
-            format: output.format,
+            format: output.format(),
             columns,
             rows,
             up: None,
@@ -117,30 +117,29 @@ impl TileSet {
         };
         // Meters of vertex/sample index k along x and y.
         type ToMeters = Box<dyn Fn(usize) -> f64>;
-        let (to_mx, to_my): (ToMeters, ToMeters) = match &output.plan {
-            Plan::Mesh(layout, _) => {
-                set.up = Some(layout.up);
-                set.placement = Some(layout.placement);
-                set.uv = Some(layout.uv);
-                if layout.placement == Placement::Tile {
-                    set.period_m = Some([spec.extent_x_m, spec.extent_y_m]);
-                }
-                let (xs, ys) = (layout.xs.clone(), layout.ys.clone());
-                let (dx, dy) = (spec.dx_m(), spec.dy_m());
-                (
-                    Box::new(move |k| xs[k] as f64 * dx),
-                    Box::new(move |k| ys[k] as f64 * dy),
-                )
+        let exporter = &output.exporter;
+        let (to_mx, to_my): (ToMeters, ToMeters) = if let Some(layout) = exporter.mesh_layout() {
+            set.up = Some(layout.up);
+            set.placement = Some(layout.placement);
+            set.uv = Some(layout.uv);
+            if layout.placement == Placement::Tile {
+                set.period_m = Some([spec.extent_x_m, spec.extent_y_m]);
             }
-            Plan::Raw(layout) => {
-                set.engine = layout.engine;
-                let [sx, sy] = layout.spacing_m(spec);
-                (
-                    Box::new(move |k| k as f64 * sx),
-                    Box::new(move |k| k as f64 * sy),
-                )
-            }
-            Plan::Image => return None,
+            let (xs, ys) = (layout.xs.clone(), layout.ys.clone());
+            let (dx, dy) = (spec.dx_m(), spec.dy_m());
+            (
+                Box::new(move |k| xs[k] as f64 * dx),
+                Box::new(move |k| ys[k] as f64 * dy),
+            )
+        } else if let Some(layout) = exporter.raw_layout() {
+            set.engine = layout.engine;
+            let [sx, sy] = layout.spacing_m(spec);
+            (
+                Box::new(move |k| k as f64 * sx),
+                Box::new(move |k| k as f64 * sy),
+            )
+        } else {
+            return None;
         };
         let find = |c: usize, r: usize| &tiles[r * columns + c];
         for t in tiles {

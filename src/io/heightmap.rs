@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use serde_json::Value;
 
+use super::{HeightReader, Heights, READERS, input_error};
 use crate::error::Error;
-use crate::export::HeightMapping;
 use crate::grid::{Grid, GridSpec};
 
 /// The kinds of file `analyze` reads, told by their first bytes.
@@ -32,17 +32,8 @@ pub struct Loaded {
     pub quantization_step_m: Option<f64>,
 }
 
-fn input_error(path: &Path, message: impl std::fmt::Display) -> Error {
-    // One line, whatever a decoder says.
-    let message = message.to_string().replace(['\n', '\r'], " ");
-    Error::Input {
-        path: path.to_path_buf(),
-        message,
-    }
-}
-
-/// The kind of image at `path`, by its first bytes.
-fn sniff(path: &Path) -> Result<ImageKind, Error> {
+/// The reader of the file at `path`, picked by its first bytes.
+fn sniff(path: &Path) -> Result<&'static dyn HeightReader, Error> {
     let mut head = [0u8; 8];
     let mut file =
         std::fs::File::open(path).map_err(|e| input_error(path, format!("cannot read: {e}")))?;
@@ -62,20 +53,16 @@ fn sniff(path: &Path) -> Result<ImageKind, Error> {
     if head.is_empty() {
         return Err(input_error(path, "is empty, not a height map"));
     }
-    if head.starts_with(b"\x89PNG\r\n\x1a\n") {
-        Ok(ImageKind::Png16)
-    } else if head.starts_with(b"II*\0")
-        || head.starts_with(b"MM\0*")
-        || head.starts_with(b"II+\0")
-        || head.starts_with(b"MM\0+")
-    {
-        Ok(ImageKind::TiffF32)
-    } else {
-        Err(input_error(
-            path,
-            "is not a PNG or TIFF image (expected a 32-bit float TIFF in meters or a 16-bit PNG with its sidecar)",
-        ))
-    }
+    READERS
+        .iter()
+        .copied()
+        .find(|r| r.sniff(head))
+        .ok_or_else(|| {
+            input_error(
+                path,
+                "is not a PNG or TIFF image (expected a 32-bit float TIFF in meters or a 16-bit PNG with its sidecar)",
+            )
+        })
 }
 
 /// The sidecar of `path` (same folder and stem, `.json`), if there is a file of that name.
@@ -136,62 +123,14 @@ fn sidecar_spacing(
 
 /// Reads a height map and its sidecar, if any (see the module docs).
 pub fn load_detailed(path: &Path) -> Result<Loaded, Error> {
-    let kind = sniff(path)?;
+    let reader = sniff(path)?;
     let sidecar = read_sidecar(path)?;
-    let (nx, ny, data, step) = match kind {
-        ImageKind::TiffF32 => {
-            let (w, h, v) = crate::export::tiff32::read(path).map_err(|e| {
-                input_error(
-                    path,
-                    format!("not a readable one-channel 32-bit float TIFF: {e}"),
-                )
-            })?;
-            if v.len() != w * h {
-                return Err(input_error(
-                    path,
-                    format!(
-                        "expected one channel of 32-bit float samples, found {} values for {w}×{h} pixels",
-                        v.len()
-                    ),
-                ));
-            }
-            (w, h, v, None)
-        }
-        ImageKind::Png16 => {
-            let (w, h, v) = crate::export::png16::read(path).map_err(|e| {
-                input_error(path, format!("not a readable 16-bit grayscale PNG: {e}"))
-            })?;
-            let Some((side, doc)) = &sidecar else {
-                let want = crate::export::sidecar::path_for(path);
-                return Err(input_error(
-                    path,
-                    format!(
-                        "has no sidecar {}: the PNG's heights cannot be converted to meters (analyze the .tif, or keep the .json beside the PNG)",
-                        want.file_name()
-                            .map(|n| n.to_string_lossy())
-                            .unwrap_or_default()
-                    ),
-                ));
-            };
-            let mapping = doc.get("mapping").and_then(|m| {
-                let lo = m.get("min_m")?.as_f64()?;
-                let hi = m.get("max_m")?.as_f64()?;
-                Some(HeightMapping {
-                    min_m: lo,
-                    max_m: hi,
-                })
-            });
-            let Some(mapping) = mapping.filter(|m| m.min_m.is_finite() && m.max_m.is_finite())
-            else {
-                return Err(input_error(
-                    side,
-                    "sidecar has no `mapping` {min_m, max_m}: the PNG's heights cannot be converted to meters",
-                ));
-            };
-            let heights = v.iter().map(|&x| mapping.decode(x) as f32).collect();
-            (w, h, heights, Some(mapping.step_m()))
-        }
-    };
+    let Heights {
+        nx,
+        ny,
+        data,
+        quantization_step_m: step,
+    } = reader.read(path, sidecar.as_ref())?;
     if nx == 0 || ny == 0 || data.len() != nx * ny {
         return Err(input_error(path, format!("has no samples ({nx}×{ny})")));
     }
@@ -215,7 +154,7 @@ pub fn load_detailed(path: &Path) -> Result<Loaded, Error> {
     Ok(Loaded {
         grid: Grid::new(spec, data),
         sidecar: sidecar.map(|(_, d)| d),
-        kind,
+        kind: reader.kind(),
         spacing_source: if spacing.is_some() {
             "sidecar"
         } else {

@@ -10,8 +10,8 @@ use std::time::Instant;
 
 use crate::config::Params;
 use crate::error::ParamError;
-use crate::export::HeightMapping;
 use crate::export::maps::MapKind;
+use crate::export::{Format, HeightMapping, OutputKind};
 
 /// One file kind of a frame or job, as `--format` names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,17 +49,15 @@ impl FileKind {
         })
     }
 
-    /// What follows `NAME.` in the file name.
-    pub fn suffix(&self) -> &'static str {
+    /// What follows `NAME.` in the file name (from the table of [`OutputKind`]).
+    pub fn suffix(&self) -> String {
         match self {
-            FileKind::Png => "png",
-            FileKind::Tif => "tif",
-            FileKind::Map(MapKind::Normal) => "normal.png",
-            FileKind::Map(MapKind::Foam) => "foam.png",
-            FileKind::Map(MapKind::Jacobian) => "jacobian.tif",
-            FileKind::Map(MapKind::Displacement) => "disp.tif",
-            FileKind::Preview => "preview.png",
+            FileKind::Png => OutputKind::Height(Format::Png16),
+            FileKind::Tif => OutputKind::Height(Format::Tiff32),
+            FileKind::Map(kind) => OutputKind::Map(*kind),
+            FileKind::Preview => OutputKind::Preview,
         }
+        .suffix()
     }
 }
 

@@ -3,12 +3,13 @@
 //! far larger than memory (32768² and beyond). Memory stays at one batch of ~8 MiB of
 //! heights (at least 16 rows) and the writers' buffers, whatever the size.
 //!
-//! `generate` streams when the method is `trochoid` and every output is a `.png` or
-//! `.tif`. Each output is one pass over the field (rows are independent, so a pass is
-//! the same bits as the in-memory field). A 16-bit PNG needs its mapping before its first
-//! row: `--height-range` gives it; otherwise a first pass without files finds the field's
-//! min..max (as the in-memory path does), unless a TIFF written first has already seen
-//! them. So a PNG alone costs two passes, or one with `--height-range`.
+//! `generate` streams when the method is `trochoid` and every output is a height format
+//! whose writer takes rows ([`RowSink`]: `.png` and `.tif`). Each output is one pass
+//! over the field (rows are independent, so a pass is the same bits as the in-memory
+//! field). A writer of 16-bit values (PNG) needs its mapping before its first row:
+//! `--height-range` gives it; otherwise a first pass without files finds the field's
+//! min..max (as the in-memory path does), unless a float writer (TIFF) written first has
+//! already seen them. So a PNG alone costs two passes, or one with `--height-range`.
 
 use std::path::PathBuf;
 
@@ -17,9 +18,8 @@ use rayon::prelude::*;
 
 use crate::config::Params;
 use crate::error::Error;
-use crate::export::maps::MapKind;
-use crate::export::sidecar::{self, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
-use crate::export::{Format, HeightMapping, Staged, png16, tiff32};
+use crate::export::sidecar::{self, FileEntry, MappingInfo, Sidecar};
+use crate::export::{Describe, Format, HeightMapping, Output, OutputKind, RowSink, Staged};
 use crate::field::SynthesisInfo;
 use crate::field::trochoid::{Frame, RowScratch, TrochoidSea};
 use crate::grid::{GridSpec, Stats};
@@ -28,15 +28,20 @@ use crate::grid::{GridSpec, Stats};
 const BATCH_BYTES: usize = 8 << 20;
 
 /// True when `generate` streams these outputs: a method that streams rows (trochoid), only
-/// PNG and TIFF files.
+/// height files whose writers take rows.
 pub fn applies(params: &Params, paths: &[PathBuf]) -> bool {
     crate::field::method_for(params).streams_rows()
-        && paths.iter().all(|p| {
-            let name = p.to_string_lossy().to_ascii_lowercase();
-            matches!(Format::from_path(p), Ok(Format::Png16 | Format::Tiff32))
-                && matches!(MapKind::from_path(p), Ok(None))
-                && !name.ends_with(".preview.png")
-        })
+        && paths
+            .iter()
+            .all(|p| matches!(OutputKind::of_path(p), Ok(OutputKind::Height(f)) if f.streams()))
+}
+
+/// The row writer of an output (see [`applies`]).
+fn sink(output: &Output) -> &dyn RowSink {
+    output
+        .exporter
+        .row_sink()
+        .expect("streamed outputs take rows")
 }
 
 /// Rows per batch for rows of `nx` samples: ~[`BATCH_BYTES`], a multiple of 16.
@@ -147,7 +152,7 @@ pub fn generate(
     // Stage every file (and one sidecar per stem) before any work.
     let mut outputs = Vec::new();
     for p in paths {
-        outputs.push((Format::from_path(p)?, Staged::create(p)?));
+        outputs.push(Output::prepare(p)?);
     }
     let mut stems: Vec<PathBuf> = Vec::new();
     for p in paths {
@@ -171,12 +176,13 @@ pub fn generate(
     let sea = TrochoidSea::new(params)?;
     let frame = sea.frame(params.time_s, Some((spec.dx_m(), spec.dy_m())));
     let info = SynthesisInfo::of_trochoid(params, &sea)?;
-    // TIFFs first: their pass also finds the range a PNG needs.
-    outputs.sort_by_key(|(f, _)| *f != Format::Tiff32);
-    let has_png = outputs.iter().any(|(f, _)| *f == Format::Png16);
-    let needs_range_pass = has_png
-        && params.output.height_range.is_none()
-        && !outputs.iter().any(|(f, _)| *f == Format::Tiff32);
+    // Writers without a mapping (TIFF) first: their pass also finds the range the others
+    // need.
+    outputs.sort_by_key(|o| o.exporter.uses_mapping());
+    let mapped = |o: &Output| o.exporter.uses_mapping();
+    let needs_range_pass = params.output.height_range.is_none()
+        && outputs.iter().any(mapped)
+        && outputs.iter().all(mapped);
     let passes = outputs.len() + needs_range_pass as usize;
     let bar = crate::pipeline::jobs::progress_bar(
         (passes * spec.ny) as u64,
@@ -199,53 +205,60 @@ pub fn generate(
         stats = Some(acc.stats());
     }
     let mut mapping: Option<(HeightMapping, &str)> = None;
-    for (format, staged) in outputs {
+    for output in &mut outputs {
+        let files = std::mem::take(&mut output.files);
         let mut acc = Running::default();
         let mut fill = |first: usize, rows: &mut [f32]| {
             fill_rows(&frame, &spec, first, rows, &mut acc);
             bar.inc((rows.len() / spec.nx) as u64);
             Ok(())
         };
-        match format {
-            Format::Tiff32 => {
-                bar.set_message("tif");
-                staged.write_with(|w| tiff32::write_strips(w, &spec, batch, &mut fill))?;
-            }
-            _ => {
-                bar.set_message("png");
-                let (m, _) = *mapping.get_or_insert_with(|| {
+        bar.set_message(output.format().extension());
+        let m = output.exporter.uses_mapping().then(|| {
+            mapping
+                .get_or_insert_with(|| {
                     HeightMapping::choose(params.output.height_range, "--height-range", || {
                         stats.expect("a pass has found the range")
                     })
-                });
-                staged.write_with(|w| {
-                    png16::write_rows(w, (spec.nx, spec.ny), &m, batch, &mut fill)
-                })?;
-            }
-        }
+                })
+                .0
+        });
+        let sink = sink(output);
+        let staged = files.into_iter().next().expect("one file");
+        staged.write_with(|w| sink.write_rows(w, &spec, m.as_ref(), batch, &mut fill))?;
         stats.get_or_insert(acc.stats());
     }
     bar.finish_and_clear();
     let stats = stats.expect("at least one output");
     for (side, staged) in stems.iter().zip(staged_sides) {
         let mut doc = Sidecar::new(params, &info, stats);
-        for p in paths.iter().filter(|p| &sidecar::path_for(p) == side) {
-            let format = Format::from_path(p)?;
+        // In the order given.
+        let of_stem: Vec<&Output> = paths
+            .iter()
+            .filter(|p| &sidecar::path_for(p) == side)
+            .filter_map(|p| outputs.iter().find(|o| &o.path == p))
+            .collect();
+        let formats: Vec<Format> = of_stem.iter().map(|o| o.format()).collect();
+        let (range, source) = mapping.unwrap_or((
+            HeightMapping {
+                min_m: stats.min_m,
+                max_m: stats.max_m,
+            },
+            "field min..max",
+        ));
+        let cx = Describe {
+            spec: &spec,
+            mapping: &range,
+            formats: &formats,
+        };
+        for o in &of_stem {
             doc.files.push(FileEntry {
-                file: crate::pipeline::write::file_name(p),
-                format,
+                file: crate::pipeline::write::file_name(&o.path),
+                format: o.format(),
             });
-            match format {
-                Format::Tiff32 => doc.geotiff = Some(GeoTiffInfo::new(&spec)),
-                _ => {
-                    let (range, source) = mapping.expect("PNG outputs have a mapping");
-                    doc.mapping = Some(MappingInfo {
-                        range,
-                        step_m: range.step_m(),
-                        formula: sidecar::FORMULA,
-                        source,
-                    });
-                }
+            o.exporter.describe(&mut doc, &cx);
+            if o.exporter.uses_mapping() {
+                doc.mapping = Some(MappingInfo::new(range, source));
             }
         }
         staged.write_json(&doc)?;

@@ -11,10 +11,11 @@ use crate::error::Error;
 use crate::export::maps::{self, MapContext, MapKind};
 use crate::export::mesh;
 use crate::export::options::ExportOptions;
-use crate::export::raw::R16Encoding;
-use crate::export::sidecar::{self, ExrInfo, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
+use crate::export::sidecar::{self, FileEntry, MappingInfo, Sidecar};
 use crate::export::tiles::{self, TileIndex, TileSet};
-use crate::export::{self, FieldOut, Format, HeightMapping, Output, Plan, Staged};
+use crate::export::{
+    self, Describe, ExportManager, FieldOut, Format, HeightMapping, Output, OutputKind, Staged,
+};
 use crate::field;
 
 /// What a caller adds to the sidecars of [`write_field`].
@@ -66,12 +67,11 @@ pub(crate) fn needs_extras(params: &Params, paths: &[PathBuf]) -> bool {
     let mut maps = Vec::new();
     let mut formats = Vec::new();
     for p in paths {
-        if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
-            maps.push(None);
-        } else if let Ok(Some(kind)) = MapKind::from_path(p) {
-            maps.push(Some(kind));
-        } else if let Ok(f) = Format::from_path(p) {
-            formats.push(f);
+        match OutputKind::of_path(p) {
+            Ok(OutputKind::Preview) => maps.push(None),
+            Ok(OutputKind::Map(kind)) => maps.push(Some(kind)),
+            Ok(OutputKind::Height(f)) => formats.push(f),
+            Err(_) => {}
         }
     }
     needed_extras(params, maps, &formats).any()
@@ -98,43 +98,31 @@ pub fn write_field(
     // from the same computed state as the height outputs; they are staged now too.
     let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
     let mut height_paths = Vec::new();
+    let mut formats = Vec::new();
     for p in paths {
-        if file_name(p).to_ascii_lowercase().ends_with(".preview.png") {
-            staged_maps.push((Staged::create(p)?, None));
-            continue;
-        }
-        match MapKind::from_path(p) {
-            Ok(Some(kind)) => staged_maps.push((Staged::create(p)?, Some(kind))),
-            Ok(None) => height_paths.push(p.clone()),
-            Err(message) => {
-                return Err(Error::Output {
-                    path: p.clone(),
-                    message,
-                }
-                .into());
+        match OutputKind::of_path(p)? {
+            OutputKind::Preview => staged_maps.push((Staged::create(p)?, None)),
+            OutputKind::Map(kind) => staged_maps.push((Staged::create(p)?, Some(kind))),
+            OutputKind::Height(format) => {
+                height_paths.push(p.clone());
+                formats.push(format);
             }
         }
     }
     let paths = height_paths;
-    let formats = paths
-        .iter()
-        .map(|p| Format::from_path(p))
-        .collect::<Result<Vec<_>, _>>()?;
     options.check(&formats, periodic)?;
     // Stage every file before computing: a bad path fails now, not after the work.
     // (No path is given twice: checked above, before the maps were staged.)
-    let mut outputs = Vec::new();
-    for p in &paths {
-        outputs.push(Output::plan(p, options, &spec, periodic)?);
-    }
+    let manager = ExportManager::plan(&paths, options, &spec, periodic)?;
+    let outputs = &manager.outputs;
     let mut stems: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();
-    for o in &outputs {
+    for o in outputs {
         stems.entry(sidecar::path_for(&o.path)).or_default().push(o);
     }
     // Every file that will be written, to refuse one written twice (an output named like
     // the sidecar or the tile index of another).
     let mut written: Vec<(PathBuf, String)> = Vec::new();
-    for o in &outputs {
+    for o in outputs {
         for f in &o.files {
             written.push((
                 f.path.clone(),
@@ -208,39 +196,25 @@ pub fn write_field(
         doc.batch = notes.batch;
         let mut uses_mapping = false;
         let mut sets = Vec::new();
+        let stem_formats: Vec<Format> = outs.iter().map(|o| o.format()).collect();
+        let cx = Describe {
+            spec: &spec,
+            mapping: &mapping,
+            formats: &stem_formats,
+        };
         for o in outs.iter() {
             for f in &o.files {
                 doc.files.push(FileEntry {
                     file: file_name(&f.path),
-                    format: o.format,
+                    format: o.format(),
                 });
             }
-            match (&o.plan, o.format) {
-                (Plan::Mesh(layout, _), _) => doc.mesh = Some(layout.info()),
-                (Plan::Raw(layout), format) => {
-                    let r16 = (format == Format::R16)
-                        .then(|| export::r16_encoding(layout.engine, &mapping));
-                    uses_mapping |= matches!(r16, Some(R16Encoding::Mapping(_)));
-                    // `.r16` and `.r32` of one stem share the layout: one record of both.
-                    let has = |f: Format| outs.iter().any(|o| o.format == f);
-                    if format == Format::R16 || !has(Format::R16) {
-                        doc.raw = Some(layout.info(&spec, r16, has(Format::R32)));
-                    }
-                }
-                (Plan::Image, Format::Png16) => uses_mapping = true,
-                (Plan::Image, Format::Exr) => doc.exr = Some(ExrInfo::default()),
-                (Plan::Image, Format::Tiff32) => doc.geotiff = Some(GeoTiffInfo::new(&spec)),
-                (Plan::Image, _) => {}
-            }
+            o.exporter.describe(&mut doc, &cx);
+            uses_mapping |= o.exporter.uses_mapping();
             sets.extend(TileSet::of(o, &spec).filter(|_| o.is_tiled()));
         }
         if uses_mapping {
-            doc.mapping = Some(MappingInfo {
-                range: mapping,
-                step_m: mapping.step_m(),
-                formula: sidecar::FORMULA,
-                source,
-            });
+            doc.mapping = Some(MappingInfo::new(mapping, source));
         }
         let index = index.map(|index_file| {
             doc.tiles_index = Some(file_name(&index_file.path));
@@ -267,17 +241,8 @@ pub fn write_field(
         slopes: mesh_slopes.as_ref(),
         about: &about,
     };
-    let has_png = outputs.iter().any(|o| o.format == Format::Png16);
-    let results: Vec<Result<(), Error>> = {
-        use rayon::prelude::*;
-        outputs
-            .into_par_iter()
-            .map(|o| o.write(&field_out))
-            .collect()
-    };
-    for r in results {
-        r?;
-    }
+    let has_png = formats.contains(&Format::Png16);
+    manager.write_all(&field_out)?;
     let map_paths: Vec<PathBuf> = staged_maps.iter().map(|(s, _)| s.path.clone()).collect();
     for (staged, kind) in staged_maps {
         match kind {

@@ -1,0 +1,135 @@
+//! Tests of the export module: staging, row batches, the extension table, the mapping.
+
+use super::*;
+
+#[test]
+fn rows_come_out_in_order_across_batches_and_write_errors_surface() {
+    let mut out = Vec::new();
+    par_rows(&mut out, 5000, 3, |r, buf| {
+        buf.extend_from_slice(format!("{r}\n").as_bytes())
+    })
+    .unwrap();
+    let want: String = (0..5000).map(|r| format!("{r}\n")).collect();
+    assert_eq!(String::from_utf8(out).unwrap(), want);
+    struct Full;
+    impl Write for Full {
+        fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+            Err(io::Error::other("disk full"))
+        }
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+    let e = par_rows(&mut Full, 100_000, 1000, |_, buf| buf.push(b'x')).unwrap_err();
+    assert_eq!(e.to_string(), "disk full");
+}
+
+#[test]
+fn formats_follow_extensions() {
+    assert_eq!(
+        Format::from_path(Path::new("a/b.PNG")).unwrap(),
+        Format::Png16
+    );
+    assert_eq!(
+        Format::from_path(Path::new("b.tiff")).unwrap(),
+        Format::Tiff32
+    );
+    let e = Format::from_path(Path::new("b.bmp"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(".bmp") && e.contains(".png"), "{e}");
+    assert!(Format::from_path(Path::new("noext")).is_err());
+}
+
+#[test]
+fn mapping_encodes_the_range_ends_and_clamps() {
+    let m = HeightMapping {
+        min_m: -2.0,
+        max_m: 3.0,
+    };
+    assert_eq!(m.encode(-2.0), 0);
+    assert_eq!(m.encode(3.0), 65535);
+    assert_eq!(m.encode(-5.0), 0);
+    assert_eq!(m.encode(9.0), 65535);
+    assert!((m.decode(m.encode(0.5)) - 0.5).abs() <= m.step_m() / 2.0 + 1e-12);
+    assert_eq!(
+        HeightMapping {
+            min_m: 1.0,
+            max_m: 1.0
+        }
+        .encode(1.0),
+        0
+    );
+}
+
+#[test]
+fn a_failed_write_leaves_no_file_and_keeps_an_earlier_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("x.png");
+    std::fs::write(&target, b"earlier").unwrap();
+    let staged = Staged::create(&target).unwrap();
+    let r = staged.write_with(|w| {
+        w.write_all(b"half")?;
+        Err(std::io::Error::other("disk full"))
+    });
+    assert!(r.is_err());
+    assert_eq!(std::fs::read(&target).unwrap(), b"earlier");
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(left.len(), 1, "temporary file removed");
+}
+
+#[test]
+fn a_staged_file_is_listed_for_cleanup_until_written_or_dropped() {
+    let dir = tempfile::tempdir().unwrap();
+    let ours = || {
+        live::live_files()
+            .iter()
+            .filter(|f| f.starts_with(dir.path()))
+            .count()
+    };
+    let a = Staged::create(&dir.path().join("a.png")).unwrap();
+    let b = Staged::create(&dir.path().join("b.png")).unwrap();
+    assert_eq!(ours(), 2, "both temporary files are listed");
+    a.write_with(|w| w.write_all(b"a")).unwrap();
+    drop(b);
+    assert_eq!(ours(), 0, "renamed and dropped files leave the list");
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("a.png")]);
+}
+
+#[test]
+fn an_unwritable_folder_fails_at_once() {
+    let e = Staged::create(Path::new("/nonexistent-dir/x.png"))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("/nonexistent-dir"), "{e}");
+}
+
+#[test]
+fn a_checked_file_names_the_allowed_extensions_and_refuses_an_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let plots = Allowed {
+        what: "plots are PNG images",
+        extensions: &["png"],
+    };
+    let e = Staged::create_checked(&dir.path().join("p.jpg"), &plots, &[])
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.contains("plots are PNG images: the file name must end in .png"),
+        "{e}"
+    );
+    let input = dir.path().join("in.png");
+    std::fs::write(&input, b"x").unwrap();
+    let e = Staged::create_checked(&input, &plots, &[(&input, "is the file being analyzed")])
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("is the file being analyzed"), "{e}");
+    assert!(Staged::create_checked(&dir.path().join("p.PNG"), &plots, &[(&input, "")]).is_ok());
+}
