@@ -35,6 +35,7 @@ use crate::fastmath::{
 use crate::simd::{Isa, multiversion};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f32_on, mirror_f64_on};
 use crate::spectrum::spreading::log2_np_f32;
+use crate::spectrum::{LineQuery, PairOut};
 
 const LOG2_E: f64 = std::f64::consts::LOG2_E;
 const LOG2_E_F32: f32 = std::f32::consts::LOG2_E;
@@ -303,36 +304,30 @@ multiversion! {
 
 multiversion! {
     @on
-    /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `ba[j]` and
-    /// (1 − c)/2 (the argument at (−kx, −ky[j]), whose cosine is exactly −c) into `bb[j]`,
-    /// and c into `c` if `keep_c`.
+    /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `b.a[j]`
+    /// and (1 − c)/2 (the argument at (−kx, −ky[j]), whose cosine is exactly −c) into
+    /// `b.b[j]`, and c into `c` if `keep_c`; the wind direction is the kernel's.
     fn cos_pass_on(
         isa: Isa,
         keep_c: bool,
-        wx: f64,
-        wy: f64,
-        kx: f64,
-        ky: &[f64],
+        kern: &Kernel,
+        q: &LineQuery,
         inv_k: &[f64],
         c: &mut [f64],
-        ba: &mut [f32],
-        bb: &mut [f32],
+        b: PairOut<f32>,
     ) {
         #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
         fn run<const KEEP_C: bool>(
-            wx: f64,
-            wy: f64,
-            kx: f64,
-            ky: &[f64],
+            (wx, wy): (f64, f64),
+            q: &LineQuery,
             inv_k: &[f64],
             c: &mut [f64],
-            ba: &mut [f32],
-            bb: &mut [f32],
+            b: PairOut<f32>,
         ) {
+            let (kx, ky) = (q.kx, q.ky);
             let n = ky.len();
             let (inv_k, c) = (&inv_k[..n], &mut c[..n]);
-            let (ba, bb) = (&mut ba[..n], &mut bb[..n]);
+            let (ba, bb) = (&mut b.a[..n], &mut b.b[..n]);
             for j in 0..n {
                 let ca = (kx * wx + ky[j] * wy) * inv_k[j];
                 if KEEP_C {
@@ -342,10 +337,11 @@ multiversion! {
                 bb[j] = half_one_plus_f32(-ca);
             }
         }
+        let wind = (kern.wx, kern.wy);
         if keep_c {
-            run::<true>(wx, wy, kx, ky, inv_k, c, ba, bb)
+            run::<true>(wind, q, inv_k, c, b)
         } else {
-            run::<false>(wx, wy, kx, ky, inv_k, c, ba, bb)
+            run::<false>(wind, q, inv_k, c, b)
         }
     }
 }
@@ -401,22 +397,20 @@ multiversion! {
 /// Entries per chunk of the value passes (their buffers stay in the L1 cache).
 const CHUNK: usize = 512;
 
-/// The values at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]` for every
-/// spreading but Donelan–Banner (m = c² for the cos² kinds, else 1), chunk by chunk.
-#[allow(clippy::too_many_arguments)]
+/// The values of the line's cells in both half-planes (see [`PairOut`]) for every
+/// spreading but Donelan–Banner (m = c² for the cos² kinds, else 1), chunk by chunk, from
+/// the per-|k| parts of the line.
 fn value_passes(
     isa: Isa,
     kern: &Kernel,
     n0: i32,
-    kx: f64,
-    ky: &[f64],
-    l: &[f32],
-    s: &[f32],
-    inv_k: &[f64],
-    pa: &mut [f64],
-    pb: &mut [f64],
+    q: &LineQuery,
+    lanes: LineLanes,
+    out: PairOut<f64>,
     buf: &mut ValueBuffers,
 ) {
+    let LineLanes { l, s, inv_k } = lanes;
+    let PairOut { a: pa, b: pb } = out;
     let cos2 = kern.kind != SpreadKind::Family;
     let ValueBuffers { c, ba, bb, p, e } = buf;
     c.resize(CHUNK, 0.0);
@@ -424,7 +418,7 @@ fn value_passes(
         v.resize(CHUNK, 0.0);
     }
     e.resize(CHUNK, 0);
-    let n = ky.len();
+    let n = q.ky.len();
     for start in (0..n).step_by(CHUNK) {
         let r = start..(start + CHUNK).min(n);
         let m = r.len();
@@ -435,19 +429,28 @@ fn value_passes(
             &mut p[..m],
             &mut e[..m],
         );
-        let (ky, inv_k, l, s) = (
-            &ky[r.clone()],
+        let (part, inv_k, l, s) = (
+            q.part(r.clone()),
             &inv_k[r.clone()],
             &l[r.clone()],
             &s[r.clone()],
         );
-        cos_pass_on(isa, cos2, kern.wx, kern.wy, kx, ky, inv_k, c, ba, bb);
+        cos_pass_on(isa, cos2, kern, &part, inv_k, c, PairOut { a: ba, b: bb });
         // (1 − c)/2 of one half-plane is (1 + c)/2 of the other; m = c² is the same.
         power_pass_on(isa, l, s, ba, bb, p, e);
         scale_pass_on(isa, cos2, n0, p, e, c, &mut pa[r.clone()]);
         power_pass_on(isa, l, s, bb, ba, p, e);
         scale_pass_on(isa, cos2, n0, p, e, c, &mut pb[r]);
     }
+}
+
+/// The per-|k| parts of every entry of a line: grid exponent l, spreading exponent s and
+/// 1/|k|.
+#[derive(Debug, Clone, Copy)]
+struct LineLanes<'a> {
+    l: &'a [f32],
+    s: &'a [f32],
+    inv_k: &'a [f64],
 }
 
 /// Chunk buffers of [`value_passes`].
@@ -540,21 +543,17 @@ impl Kernel {
         self.grid_value(&g, kx, ky, n0)
     }
 
-    /// [`Kernel::grid_variance`] at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into
-    /// `pb[j]` for every j, bit for bit, in whole-line passes on `isa`.
-    #[allow(clippy::too_many_arguments)]
+    /// [`Kernel::grid_variance`] of every cell of the line in both half-planes (see
+    /// [`PairOut`]), bit for bit, in whole-line passes on `isa`.
     pub(super) fn grid_pair_line_on(
         &self,
         isa: Isa,
         freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
+        q: &LineQuery,
+        out: PairOut<f64>,
         scratch: &mut GridScratch,
     ) {
+        let LineQuery { kx, ky, dkx, dky } = *q;
         let n = ky.len();
         let GridScratch {
             k2,
@@ -603,7 +602,7 @@ impl Kernel {
                     }
                 }
                 None => {
-                    self.radial_line(k2, freq, radial, double);
+                    self.radial_line(isa, k2, freq, radial, double);
                     log2_pass_on(isa, self.grid_l0, frac, double, l, s);
                     inv_k.copy_from_slice(&double.inv_k[..unique]);
                     if db {
@@ -629,11 +628,12 @@ impl Kernel {
                     inv_k: inv_k[j],
                     beta: beta[j],
                 };
-                pa[j] = self.grid_value(&g, kx, ky[j], n0);
-                pb[j] = self.grid_value(&g, -kx, -ky[j], n0);
+                out.a[j] = self.grid_value(&g, kx, ky[j], n0);
+                out.b[j] = self.grid_value(&g, -kx, -ky[j], n0);
             }
             return;
         }
-        value_passes(isa, self, n0, kx, ky, l, s, inv_k, pa, pb, values);
+        let lanes = LineLanes { l, s, inv_k };
+        value_passes(isa, self, n0, q, lanes, out, values);
     }
 }
