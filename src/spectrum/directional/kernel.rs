@@ -5,8 +5,8 @@
 use super::spread_table::SpreadTable;
 use super::{
     C_HIGH, C_LOW, FrequencySpectrum, G, MAX_CELL_ORDER, MIDPOINT_RATIO, PI, POWER_EXPONENT_MIN,
-    TAIL_SCALE, TWO_PI, U_MAX, atan2_pos, grid, half_one_plus, kitaigorodskii, ln_half_one_plus,
-    sech2, tanh,
+    TAIL_SCALE, TWO_PI, U_MAX, atan2_pos, half_one_plus, kitaigorodskii, ln_half_one_plus, sech2,
+    tanh,
 };
 use crate::fastmath::{exp, ln};
 
@@ -60,7 +60,7 @@ pub(super) struct Kernel {
     /// of the grid's single-precision exponents (see `grid`).
     pub(super) grid_l0: f64,
     /// The grid's single-precision radial lane, for the seas it covers.
-    pub(super) fast: Option<grid::FastRadial>,
+    pub(super) fast: Option<super::fast_radial::FastRadial>,
 }
 
 impl Kernel {

@@ -65,6 +65,7 @@ use crate::simd::Isa;
 
 mod angle;
 mod cells;
+mod fast_radial;
 mod grid;
 mod kernel;
 mod line;
@@ -297,7 +298,7 @@ impl DirectionalSpectrum {
         if a_peak > 0.0 && a_peak.is_finite() {
             kern.grid_l0 = ln(a_peak) * std::f64::consts::LOG2_E;
         }
-        kern.fast = grid::FastRadial::new(&kern);
+        kern.fast = fast_radial::FastRadial::new(&kern);
         Ok(Self {
             freq,
             spreading,
