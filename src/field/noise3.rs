@@ -14,8 +14,9 @@
 //! interpolated gradient x components and constant parts of the four corners of that
 //! column. [`row_context`] gives the constants, [`RowCtx::column`] the coefficients of a
 //! column, and [`add_row`] fills a row from a table of columns with a branch-free loop
-//! that the compiler vectorizes (compiled for each instruction set by `simd::multiversion`; the same IEEE
-//! operations in the same order on both, no fused multiply–add, so the bits do not
+//! that the compiler vectorizes (compiled for each instruction set by
+//! `simd::multiversion`, the one of the run chosen when a [`Scratch`] is made; the same
+//! IEEE operations in the same order on all, no fused multiply–add, so the bits do not
 //! depend on the processor). A single point is a row of one sample: [`noise`] gives the
 //! very bits [`add_row`] gives at that point.
 

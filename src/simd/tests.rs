@@ -224,7 +224,7 @@ fn sin_cos_line_rejects_mismatched_slices() {
 /// Prints ns per element at ny = 4096: the scalar loops (gaussian_polar and sin_cos one
 /// by one) vs the line functions, and each compiled path; medians of interleaved runs.
 ///
-/// `cargo test --release --lib lines -- --ignored --nocapture`
+/// `cargo test --release --lib simd::tests::speed -- --ignored --nocapture`
 #[test]
 #[ignore]
 fn speed() {
