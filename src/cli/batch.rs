@@ -14,7 +14,7 @@ pub struct BatchArgs {
     /// preset key); several sweeps give their cartesian product
     #[arg(long, value_name = "KEY=VALUES")]
     pub sweep: Vec<String>,
-    /// A TOML manifest: base preset, [set] overrides, [sweep] tables, [[job]] entries
+    /// A TOML manifest: base preset, a set table of overrides, sweep tables, job entries
     #[arg(long, value_name = "FILE.toml")]
     pub manifest: Option<PathBuf>,
     /// Output folder (created if missing); with --merge-index, where the merged index goes

@@ -162,7 +162,7 @@ pub struct GenerateArgs {
     #[command(flatten)]
     pub field: FieldArgs,
     /// Output file; repeat for several formats of one field (.png 16-bit, .tif/.exr float
-    /// meters, .r16/.raw/.r32 raw, .obj/.glb mesh). Default: out/<preset>.png and out/<preset>.tif
+    /// meters, .r16/.raw/.r32 raw, .obj/.glb mesh). Default: out/PRESET.png and out/PRESET.tif
     #[arg(short = 'o', long = "output", value_name = "PATH")]
     pub outputs: Vec<PathBuf>,
     /// How meshes, raw height maps and tiles are written
@@ -221,7 +221,7 @@ pub struct RenderArgs {
     /// Haze distance in meters, 0 for none (default: 4 field sizes or 10 camera heights)
     #[arg(long, value_name = "M", allow_hyphen_values = true)]
     pub haze: Option<String>,
-    /// Sky reflection weight: fresnel (Schlick, n = 1.33; default) or pseudo[:C] (1 − (n·v)^C, C = 0.3)
+    /// Sky reflection weight: fresnel (Schlick, n = 1.33; default) or pseudo, pseudo:C (1 − (n·v)^C, C = 0.3 by default)
     #[arg(long, value_name = "fresnel|pseudo[:C]")]
     pub reflection: Option<String>,
     /// Repeat the field to the horizon (the default for periodic fields)

@@ -13,7 +13,7 @@ use crate::error::Error;
 use crate::export::Staged;
 use crate::grid::GridSpec;
 use crate::io::{ImageKind, load_detailed};
-use crate::measure::{Analysis, COMPARABLE_METHODS, Target, analyze};
+use crate::measure::{Analysis, Target, analyze};
 use crate::plot::analysis::{PLOT_SIZE, render_plot};
 
 /// What `analyze --json` prints: the file, then the [`Analysis`].
@@ -169,6 +169,20 @@ fn human_report(r: &Report) -> String {
     s
 }
 
+/// The methods whose fields follow their spectrum model as a whole, so that a measured
+/// spectrum has a target (`field::HeightMethod::follows_spectrum`).
+fn comparable_methods() -> Vec<&'static str> {
+    let mut params = Params::default();
+    crate::config::Method::ALL
+        .iter()
+        .filter(|&&m| {
+            params.method = m;
+            crate::field::method_for(&params).follows_spectrum()
+        })
+        .map(|m| m.name())
+        .collect()
+}
+
 /// The target described by a sidecar's `params`, for a field on `spec`; `Err` says in one
 /// sentence why there is none.
 pub fn target_from_sidecar(sidecar: &Value, spec: &GridSpec) -> Result<Target, String> {
@@ -178,14 +192,14 @@ pub fn target_from_sidecar(sidecar: &Value, spec: &GridSpec) -> Result<Target, S
     let params: Params = serde_json::from_value(raw.clone())
         .map_err(|e| format!("the sidecar's `params` do not parse ({e}); no target"))?;
     let method = params.method.name().to_string();
-    if !COMPARABLE_METHODS.contains(&method.as_str()) {
+    if !crate::field::method_for(&params).follows_spectrum() {
         return Err(match method.as_str() {
             "hybrid" => "method hybrid: only the alpha = 1 region follows the spectrum, \
                          so the whole field has no target spectrum"
                 .to_string(),
             m => format!(
                 "method {m} does not follow a spectrum model; targets exist for {}",
-                COMPARABLE_METHODS.join(", ")
+                comparable_methods().join(", ")
             ),
         });
     }

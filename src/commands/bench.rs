@@ -335,7 +335,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             time(repeats, || field::synthesize(&params)),
         ));
         // The default preview (grazing view, 1280×720, 4 rays per pixel), pyramids included.
-        let periodic = params.is_periodic();
+        let periodic = field::method_for(&params).is_periodic();
         let wind = params.wind.direction_deg.to_radians();
         let preview = crate::render::RenderOptions::preview(&synthesis.grid, wind, periodic);
         rows.push((

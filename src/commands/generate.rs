@@ -46,7 +46,7 @@ pub fn run(args: GenerateArgs) -> Result<()> {
             .iter()
             .map(|p| Format::from_path(p))
             .collect::<Result<Vec<_>, _>>()?;
-        options.check(&formats, params.is_periodic())?;
+        options.check(&formats, crate::field::method_for(&params).is_periodic())?;
         crate::pipeline::stream::generate(&params, &paths, args.quiet)?
     } else {
         write_field(

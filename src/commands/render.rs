@@ -258,7 +258,7 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
         return Ok((
             synthesis.grid,
             params.wind.direction_deg.to_radians(),
-            params.is_periodic(),
+            crate::field::method_for(&params).is_periodic(),
         ));
     };
     let f = &args.field;
@@ -282,7 +282,11 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
         .and_then(|d| d.get("params"))
         .and_then(|v| serde_json::from_value(v.clone()).ok());
     Ok(match params {
-        Some(p) => (grid, p.wind.direction_deg.to_radians(), p.is_periodic()),
+        Some(p) => (
+            grid,
+            p.wind.direction_deg.to_radians(),
+            crate::field::method_for(&p).is_periodic(),
+        ),
         None => (grid, 0.0, false),
     })
 }
@@ -401,11 +405,14 @@ mod tests {
     #[test]
     fn periodic_methods_are_recognized() {
         let mut p = Params::default();
-        assert!(!p.is_periodic(), "the default hybrid ramps α along y");
+        assert!(
+            !crate::field::method_for(&p).is_periodic(),
+            "the default hybrid ramps α along y"
+        );
         p.method = Method::Fft;
-        assert!(p.is_periodic());
+        assert!(crate::field::method_for(&p).is_periodic());
         p.method = Method::Perlin;
         p.perlin.tileable = false;
-        assert!(!p.is_periodic());
+        assert!(!crate::field::method_for(&p).is_periodic());
     }
 }

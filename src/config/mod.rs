@@ -34,6 +34,15 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method, in the order `--method` lists them.
+    pub const ALL: [Method; 5] = [
+        Method::Hybrid,
+        Method::Fft,
+        Method::FilteredNoise,
+        Method::Perlin,
+        Method::Trochoid,
+    ];
+
     pub fn name(&self) -> &'static str {
         match self {
             Method::Hybrid => "hybrid",
@@ -310,22 +319,6 @@ pub struct OutputParams {
     /// Fixed heights mapped to 0 and 65535 in 16-bit outputs (default: the field's min..max).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub height_range: Option<Range2>,
-}
-
-impl Params {
-    /// True when the field repeats over its extent (sample N equals sample 0): FFT and
-    /// filtered-noise fields, tileable Perlin noise, and the hybrid of the two under a
-    /// constant α. A ramp, radial or image α breaks the period.
-    pub fn is_periodic(&self) -> bool {
-        match self.method {
-            Method::Fft | Method::FilteredNoise => true,
-            Method::Perlin => self.perlin.tileable,
-            Method::Trochoid => false,
-            Method::Hybrid => {
-                self.perlin.tileable && matches!(self.blend.alpha, AlphaConfig::Constant { .. })
-            }
-        }
-    }
 }
 
 /// Phillips A of the default preset: gives the `li-tian` setting (512 m, 1 m grid,

@@ -133,6 +133,14 @@ pub fn load(name_or_path: &str) -> Result<Params> {
     )))
 }
 
+impl Params {
+    /// The parameters of a built-in preset (`li-tian`, `storm`, …; `seasynth presets`
+    /// lists them) or of a `.toml`/`.json` preset file or sidecar.
+    pub fn preset(name_or_path: &str) -> Result<Params> {
+        load(name_or_path)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

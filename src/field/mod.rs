@@ -1,9 +1,12 @@
-//! Height fields: each method computes a [`Grid`] of heights in meters.
+//! Height fields: each method computes a [`Grid`] of heights in meters. The methods are
+//! one type each behind [`HeightMethod`] (in [`method`]), built by [`method_for`];
+//! [`Synthesizer`] prepares one for its frames and [`synthesize`] computes one field.
 
 pub mod dynamics;
 pub mod fft;
 pub mod filtered_noise;
 pub mod hybrid;
+pub mod method;
 pub mod noise3;
 pub mod perlin;
 pub mod trochoid;
@@ -11,7 +14,9 @@ pub mod weight;
 
 use serde::Serialize;
 
-use crate::config::{Beta, Method, Params, SpectrumModel, SpreadingName};
+pub use method::{HeightMethod, method_for};
+
+use crate::config::{Params, SpectrumModel, SpreadingName};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::rng::{Stream, sub_seed};
@@ -48,7 +53,7 @@ pub struct SynthesisInfo {
 
 impl SynthesisInfo {
     /// Records the physical model's Hs and Tp (none for Phillips and fractal spectra).
-    fn record_model(&mut self, sea: Option<&SeaModel>) {
+    pub(crate) fn record_model(&mut self, sea: Option<&SeaModel>) {
         if let Some(sea) = sea {
             self.model_hs_m = Some(sea.freq.hs_m());
             self.model_tp_s = Some(1.0 / sea.freq.peak_hz());
@@ -72,7 +77,7 @@ pub struct Synthesis {
     /// Heights in meters (the choppy surface resampled onto the grid when λ ≠ 0).
     pub grid: Grid,
     pub info: SynthesisInfo,
-    /// Slopes, displacement and Jacobian, when asked for (see [`Synthesizer::new`]).
+    /// Slopes, displacement and Jacobian, when asked for (see [`HeightMethod::frame`]).
     pub surface: dynamics::Surface,
 }
 
@@ -167,7 +172,10 @@ pub fn spectrum_model(params: &Params) -> Result<(Box<dyn Spectrum>, Dispersion)
 }
 
 /// [`spectrum_model`] given the already built [`sea_model`] of `params`.
-fn model_from(params: &Params, sea: Option<SeaModel>) -> Result<(Box<dyn Spectrum>, Dispersion)> {
+pub(crate) fn model_from(
+    params: &Params,
+    sea: Option<SeaModel>,
+) -> Result<(Box<dyn Spectrum>, Dispersion)> {
     if let Some(sea) = sea {
         let dispersion = sea.dispersion;
         return Ok((Box::new(sea.into_directional()?), dispersion));
@@ -193,207 +201,32 @@ pub fn synthesize(params: &Params) -> Result<Synthesis> {
     Ok(s)
 }
 
-/// A prepared synthesis: everything that does not depend on time (the spectrum, the
-/// weight map, the Perlin field and, when kept, the random draws), so the frames of an
-/// animation redo only the time-dependent part. Frames equal [`synthesize`] at their time
-/// bit for bit.
+/// A prepared synthesis: the method of the parameters with everything that does not
+/// depend on time done once (the spectrum, the weight map, the Perlin field and, when
+/// kept, the random draws), so the frames of an animation redo only the time-dependent
+/// part. Frames equal [`synthesize`] at their time bit for bit.
 pub struct Synthesizer {
-    params: Params,
-    spec: crate::grid::GridSpec,
-    info: SynthesisInfo,
-    model: Option<(Box<dyn Spectrum>, Dispersion)>,
-    alpha: Option<weight::AlphaMap>,
-    noise: Option<Vec<f32>>,
-    motion: Option<filtered_noise::Motion>,
-    amplitudes: Option<fft::Amplitudes>,
-    plan: Option<fft::InverseFft2>,
+    method: Box<dyn HeightMethod>,
     extras: dynamics::Extras,
-    trochoid: Option<trochoid::TrochoidSea>,
 }
 
 impl Synthesizer {
     /// `extras`: the derived fields each frame computes; `keep_draws`: keep the random
     /// amplitudes between frames (memory: 32 bytes per wavevector of the half plane).
     pub fn new(params: &Params, extras: dynamics::Extras, keep_draws: bool) -> Result<Self> {
-        let spec = params.grid_spec();
-        let mut info = SynthesisInfo::default();
-        // Inputs that can fail are read before the expensive work.
-        let alpha = match params.method {
-            Method::Hybrid => Some(weight::AlphaMap::new(&params.blend.alpha, &spec)?),
-            _ => None,
-        };
-        let spectral = matches!(
-            params.method,
-            Method::Fft | Method::Hybrid | Method::FilteredNoise
-        );
-        let model = if spectral {
-            if params.spectrum.model == SpectrumModel::Phillips {
-                info.phillips_largest_wave_m = Some(phillips(params).largest_wave_m());
-            }
-            // The sea model is built once: its Hs and Tp for the sidecar, then the spectrum.
-            let sea = sea_model(params)?;
-            info.record_model(sea.as_ref());
-            Some(model_from(params, sea)?)
-        } else {
-            None
-        };
-        let noise = match params.method {
-            Method::Perlin | Method::Hybrid => {
-                let pp = perlin_params(params);
-                info.perlin_wavelengths_m = perlin::octave_wavelengths(&spec, &pp);
-                Some(perlin::perlin_field(&spec, &pp))
-            }
-            Method::Fft | Method::FilteredNoise | Method::Trochoid => None,
-        };
-        let trochoid = match params.method {
-            Method::Trochoid => {
-                crate::config::validate::check_in_memory(params)?;
-                let sea = trochoid::TrochoidSea::new(params)?;
-                info = SynthesisInfo::of_trochoid(params, &sea)?;
-                Some(sea)
-            }
-            _ => None,
-        };
-        let mut this = Self {
-            params: params.clone(),
-            spec,
-            info,
-            model,
-            alpha,
-            noise,
-            motion: None,
-            amplitudes: None,
-            plan: spectral.then(|| fft::InverseFft2::new(spec.nx, spec.ny)),
-            extras,
-            trochoid,
-        };
-        if params.method == Method::FilteredNoise {
-            let setup = this.setup(0.0).expect("spectral methods have a model");
-            let dir = params.wind.direction_deg.to_radians();
-            let wind = (dir.cos(), dir.sin());
-            let (k_peak, band) = filtered_noise::peak_band(&setup, wind, 2.0 / 3.0);
-            let m = &params.motion;
-            this.motion = Some(filtered_noise::Motion {
-                mode: m.phase_mode,
-                wind,
-                fps: m.fps,
-                dominant_rad: m.hot_air_dominant_rad,
-                other_rad: m.hot_air_other_rad,
-                speed_mps: m
-                    .translate_speed_mps
-                    .unwrap_or_else(|| (crate::spectrum::G / k_peak).sqrt()),
-                band,
-            });
-        } else if keep_draws {
-            this.amplitudes = this.setup(0.0).map(|setup| fft::Amplitudes::new(&setup));
-        }
-        Ok(this)
-    }
-
-    fn setup(&self, time_s: f64) -> Option<fft::SpectrumSetup<'_>> {
-        let (model, dispersion) = self.model.as_ref()?;
-        Some(fft::SpectrumSetup {
-            spec: self.spec,
-            spectrum: model.as_ref(),
-            dispersion: *dispersion,
-            seed: sub_seed(self.params.seed, Stream::SpectrumAmplitude),
-            time_s,
-            loop_period_s: self.params.motion.loop_period_s,
-        })
+        let mut method = method_for(params);
+        method.prepare(keep_draws)?;
+        Ok(Self { method, extras })
     }
 
     /// The field at `time_s`, with the derived fields of `new`'s `extras`.
     pub fn frame(&self, time_s: f64) -> Synthesis {
-        self.frame_with(time_s, self.extras)
+        self.method.frame(time_s, self.extras)
     }
 
     /// The heights alone at `time_s` (no derived fields beyond what a choppy height
     /// needs): the same grid as [`frame`](Self::frame).
     pub fn heights(&self, time_s: f64) -> Grid {
-        self.frame_with(time_s, dynamics::Extras::default()).grid
-    }
-
-    fn frame_with(&self, time_s: f64, extras: dynamics::Extras) -> Synthesis {
-        let params = &self.params;
-        let spec = self.spec;
-        let mut info = self.info.clone();
-        let mut surface = dynamics::Surface::default();
-        let lambda = params.motion.choppiness;
-        let fft = self.setup(time_s).map(|setup| {
-            let plan = self.plan.as_ref().expect("spectral methods have a plan");
-            let half = if params.method == Method::FilteredNoise {
-                filtered_noise::filtered_spectrum(&setup, self.motion.as_ref())
-            } else if let Some(a) = &self.amplitudes {
-                a.frame(&setup)
-            } else {
-                fft::synthesize_spectrum(&setup)
-            };
-            if params.method != Method::FilteredNoise {
-                info.h0max_m = Some(half.h0max_m);
-            }
-            let mut data = if extras.any() || lambda != 0.0 {
-                let (data, s) = dynamics::surface_and_height(half, &spec, plan, extras, lambda);
-                surface = s;
-                data
-            } else {
-                plan.process(half)
-            };
-            if let Some(d) = surface.displacement.as_ref().filter(|_| lambda != 0.0) {
-                let choppy = dynamics::resample_choppy(&data, d, &spec);
-                let still = std::mem::replace(&mut data, choppy);
-                if extras.displacement {
-                    surface.undisplaced_height = Some(still);
-                }
-            }
-            if !extras.displacement {
-                surface.displacement = None;
-            }
-            Grid::new(spec, data)
-        });
-        let grid = match (fft, self.noise.as_ref(), self.alpha.as_ref()) {
-            _ if self.trochoid.is_some() => {
-                let sea = self.trochoid.as_ref().expect("checked");
-                sea.grid(&spec, time_s)
-            }
-            (Some(mut f), Some(p), Some(alpha)) => {
-                let b = match params.blend.beta {
-                    Beta::Paper => info.h0max_m.unwrap_or(0.0),
-                    Beta::Matched => {
-                        let pstd = crate::grid::Stats::of_rows(p, spec.nx).std_m;
-                        if pstd > 0.0 {
-                            f.stats().std_m / pstd
-                        } else {
-                            0.0
-                        }
-                    }
-                    Beta::Meters(b) => b,
-                } * params.blend.beta_scale;
-                info.beta_m = Some(b);
-                hybrid::blend_in_place(&mut f, p, alpha, b as f32);
-                f
-            }
-            (Some(f), None, _) => f,
-            (None, Some(p), _) => {
-                let amp = params.perlin.amplitude_m as f32;
-                Grid::new(spec, p.iter().map(|v| v * amp).collect())
-            }
-            _ => unreachable!("every method computes at least one field"),
-        };
-        // Without a spectrum of the whole field (Perlin, or the hybrid blend), slopes by
-        // central differences of the heights (already resampled when choppy, so their
-        // normals need no displacement gradient).
-        if extras.slopes && (self.noise.is_some() || surface.slopes.is_none()) {
-            let s = crate::measure::slopes::slopes_central(&grid, params.is_periodic());
-            surface.slopes = Some([s.dhdx, s.dhdy]);
-            surface.displacement_gradient = None;
-        }
-        if extras.jacobian && surface.jacobian.is_none() {
-            surface.jacobian = Some(dynamics::Jacobian::One);
-        }
-        Synthesis {
-            grid,
-            info,
-            surface,
-        }
+        self.method.frame(time_s, dynamics::Extras::default()).grid
     }
 }

@@ -5,6 +5,5 @@ pub mod slopes;
 pub mod spectrum;
 
 pub use spectrum::{
-    Analysis, COMPARABLE_METHODS, COMPARE_FLOOR, NORMALIZATION, RadialBin, Target, TargetSummary,
-    analyze, same_length,
+    Analysis, COMPARE_FLOOR, NORMALIZATION, RadialBin, Target, TargetSummary, analyze, same_length,
 };

@@ -13,7 +13,7 @@ pub struct Slopes {
 }
 
 /// Central differences of `grid` at every sample: (h[i+1] − h[i−1])/(2·dx), wrapping
-/// around when `periodic`, else one-sided (h[1] − h[0])/dx and (h[n−1] − h[n−2])/dx at
+/// around when `periodic`, else one-sided `(h[1] − h[0])/dx` and `(h[n−1] − h[n−2])/dx` at
 /// the edges; likewise along y.
 pub fn slopes_central(grid: &Grid, periodic: bool) -> Slopes {
     let xs: Vec<usize> = (0..grid.spec.nx).collect();

@@ -49,10 +49,6 @@ use serde::Serialize;
 use crate::grid::{Grid, GridSpec, is_resolved, signed_index};
 use crate::spectrum::Spectrum;
 
-/// The methods whose wavevector amplitudes follow the spectrum model, so the measured
-/// spectrum can be compared with it.
-pub const COMPARABLE_METHODS: &[&str] = &["fft", "filtered-noise"];
-
 /// Bins whose target power is at least this fraction of the largest target bin take
 /// part in the log-spectrum comparison.
 pub const COMPARE_FLOOR: f64 = 1e-3;

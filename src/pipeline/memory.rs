@@ -1,14 +1,15 @@
 //! The memory a run will need: bytes per grid sample of each method and output, checked
 //! against what is available (`limits::check_memory`) before any work starts.
 
-use crate::config::{Method, Params};
+use crate::config::Params;
 use crate::field::dynamics::Extras;
 
 /// Peak memory of one field's synthesis and export, as bytes per grid sample plus a
-/// fixed part. The figures are measured peaks (maximum resident set, `/usr/bin/time -v`)
-/// of `generate` between 2048² and 4096², plus about a quarter: 8 bytes a sample for
-/// the height field and its transform, 12 for `hybrid`, 8 more for choppy waves; see the
-/// README's Guarantees section.
+/// fixed part: the method's own bytes per sample (`field::HeightMethod::bytes_per_sample`)
+/// and those of choppy waves, derived fields and outputs. The figures are measured peaks
+/// (maximum resident set, `/usr/bin/time -v`) of `generate` between 2048² and 4096², plus
+/// about a quarter: 8 bytes a sample for the height field and its transform, 12 for
+/// `hybrid`, 8 more for choppy waves; see the README's Guarantees section.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Footprint {
     pub per_sample: u64,
@@ -25,13 +26,7 @@ pub const DERIVED_BYTES: u64 = 8;
 impl Footprint {
     /// One field of `params` with its height outputs and the derived fields `extras`.
     pub fn of_field(params: &Params, extras: Extras) -> Self {
-        // The per-method table: a new method is one more line.
-        let base = match params.method {
-            Method::Perlin | Method::Fft | Method::FilteredNoise => 10,
-            // Held in memory only when not streamed (the field and its outputs).
-            Method::Trochoid => 8,
-            Method::Hybrid => 14,
-        };
+        let base = crate::field::method_for(params).bytes_per_sample();
         let choppy = if params.motion.choppiness != 0.0 {
             10
         } else {

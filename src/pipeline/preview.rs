@@ -11,7 +11,7 @@ pub fn preview_of(
     synthesis: &crate::field::Synthesis,
 ) -> Result<crate::render::RgbImage, crate::error::Error> {
     let grid = &synthesis.grid;
-    let periodic = params.is_periodic();
+    let periodic = crate::field::method_for(params).is_periodic();
     let opts = crate::render::RenderOptions::preview(
         grid,
         params.wind.direction_deg.to_radians(),
@@ -26,10 +26,8 @@ pub fn preview_of(
     crate::render::render(grid, slopes, periodic, &opts)
 }
 
-/// True when spectral slopes are the slopes of the height map: one spectrum, not resampled.
+/// True when spectral slopes are the slopes of the height map: one spectrum, not resampled
+/// (`field::HeightMethod::exact_slopes`).
 pub fn exact_slopes_apply(params: &Params) -> bool {
-    matches!(
-        params.method,
-        crate::config::Method::Fft | crate::config::Method::FilteredNoise
-    ) && params.motion.choppiness == 0.0
+    crate::field::method_for(params).exact_slopes()
 }

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use rayon::prelude::*;
 
-use crate::config::{Method, Params};
+use crate::config::Params;
 use crate::error::Error;
 use crate::export::maps::MapKind;
 use crate::export::sidecar::{self, FileEntry, GeoTiffInfo, MappingInfo, Sidecar};
@@ -27,9 +27,10 @@ use crate::grid::{GridSpec, Stats};
 /// Heights per batch (at least one TIFF strip of rows).
 const BATCH_BYTES: usize = 8 << 20;
 
-/// True when `generate` streams these outputs: a trochoid field, only PNG and TIFF files.
+/// True when `generate` streams these outputs: a method that streams rows (trochoid), only
+/// PNG and TIFF files.
 pub fn applies(params: &Params, paths: &[PathBuf]) -> bool {
-    params.method == Method::Trochoid
+    crate::field::method_for(params).streams_rows()
         && paths.iter().all(|p| {
             let name = p.to_string_lossy().to_ascii_lowercase();
             matches!(Format::from_path(p), Ok(Format::Png16 | Format::Tiff32))

@@ -92,7 +92,7 @@ pub fn write_field(
     force: bool,
 ) -> Result<Written> {
     let spec = params.grid_spec();
-    let periodic = params.is_periodic();
+    let periodic = field::method_for(params).is_periodic();
     refuse_repeated(paths)?;
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.

@@ -394,7 +394,7 @@ fn split(c: i64, n: usize) -> (i64, i64) {
 }
 
 /// Smallest s in [0, s1] where the ray (u, v, z)(s) = a + d·s meets the bilinear patch of
-/// heights c[·][0] over (u, v) ∈ cell; 0 when the ray starts below it.
+/// heights `c[·][0]` over (u, v) ∈ cell; 0 when the ray starts below it.
 pub fn patch_root(c: [[f64; 3]; 4], a: [f64; 3], d: [f64; 3], s1: f64) -> Option<f64> {
     let h00 = c[0][0];
     let b = c[1][0] - h00;

@@ -3,7 +3,7 @@
 //!
 //! The matrix is the Fourier grid of a virtual square tile of side L (`matrix_extent_m`):
 //! cell (n, m), n, m ∈ [−M/2, M/2), holds the wavevector k = 2π(n, m)/L and the model's
-//! E|h̃0(k)|² = P(k) for that spacing (the [`Spectrum`] trait, as the FFT methods use it).
+//! E|h̃0(k)|² = P(k) for that spacing (the [`Spectrum`](crate::spectrum::Spectrum) trait, as the FFT methods use it).
 //! In the FFT sum, the cell's wave has amplitude 2|h̃0(k)| and travels along +k, so the
 //! component gets the expected amplitude A = 2√P(k) (its variance A²/2 = 2P(k) is the
 //! cell's share of the field's), the direction of k, ω from the dispersion relation, and a

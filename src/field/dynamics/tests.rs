@@ -1,0 +1,368 @@
+//! Tests of the derived fields: spectral slopes and displacement against closed forms, the Jacobian, the choppy resampling and the normals.
+
+use super::*;
+
+/// The derived fields of `half` (a copy of it is consumed).
+fn surface(
+    half: &HalfSpectrum,
+    spec: &GridSpec,
+    plan: &InverseFft2,
+    extras: Extras,
+    lambda: f64,
+) -> Surface {
+    let copy = HalfSpectrum {
+        data: half.data.clone(),
+        ..*half
+    };
+    surface_and_height(copy, spec, plan, extras, lambda).1
+}
+use crate::field::fft::{OneComponent, SpectrumSetup, synthesize_spectrum};
+use crate::spectrum::{Dispersion, Phillips, Spectrum};
+
+fn setup(spec: GridSpec, s: &dyn Spectrum, t: f64) -> SpectrumSetup<'_> {
+    SpectrumSetup {
+        spec,
+        spectrum: s,
+        dispersion: Dispersion::Deep,
+        seed: 3,
+        time_s: t,
+        loop_period_s: None,
+    }
+}
+
+/// A cosine along x: h = A cos(k x + φ); returns (A, φ, k, grid, spectrum).
+fn cosine(n: i64, size: usize, extent: f64) -> (f64, f64, f64, GridSpec, HalfSpectrum) {
+    let spec = GridSpec::new(size, 8, extent, extent * 8.0 / size as f64);
+    let k = std::f64::consts::TAU * n as f64 / extent;
+    let one = OneComponent {
+        k: (k, 0.0),
+        variance: 2.0,
+    };
+    let half = synthesize_spectrum(&setup(spec, &one, 0.0));
+    // E|h̃0|² = p: h̃(k) = ρ e^{iφ}, h = 2ρ cos(kx + φ), A = 2ρ.
+    let c = half.data[n as usize * 8];
+    (2.0 * c.norm() as f64, c.arg() as f64, k, spec, half)
+}
+
+const FIELD_TOL: f64 = 2e-5;
+
+#[test]
+fn choppy_displacement_of_one_component_is_the_trochoid() {
+    let (a, phi, k, spec, half) = cosine(3, 256, 100.0);
+    let plan = InverseFft2::new(spec.nx, spec.ny);
+    let h = plan.process(HalfSpectrum {
+        data: half.data.clone(),
+        ..half
+    });
+    // Steep but not folding: λAk = 0.6.
+    let lambda = 0.6 / (a * k);
+    let s = surface(
+        &half,
+        &spec,
+        &plan,
+        Extras {
+            displacement: true,
+            ..Default::default()
+        },
+        lambda,
+    );
+    let d = s.displacement.unwrap();
+    // h = A cos(kx + φ) ⇒ λDx = −λA sin(kx + φ).
+    for i in 0..spec.nx {
+        let arg = k * spec.x_m(i) + phi;
+        let want_h = a * arg.cos();
+        let want_d = -lambda * a * arg.sin();
+        assert!(
+            (h[i] as f64 - want_h).abs() < FIELD_TOL * a * 10.0,
+            "h[{i}]"
+        );
+        assert!(
+            (d[0][i] as f64 - want_d).abs() < FIELD_TOL * a * 10.0,
+            "λDx[{i}] = {} vs {want_d}",
+            d[0][i]
+        );
+        assert!(d[1][i].abs() < 1e-6, "no displacement across the wave");
+    }
+    // The resampled height is the trochoid x = x0 − λA sin(kx0 + φ), z = A cos(kx0 + φ):
+    // solve for x0 by Newton at each grid x and compare.
+    let hc = resample_choppy(&h, &d, &spec);
+    let mut worst: f64 = 0.0;
+    for (i, &got) in hc.iter().enumerate().take(spec.nx) {
+        let x = spec.x_m(i);
+        let mut x0 = x;
+        for _ in 0..50 {
+            let f = x0 - lambda * a * (k * x0 + phi).sin() - x;
+            let df = 1.0 - lambda * a * k * (k * x0 + phi).cos();
+            x0 -= f / df;
+        }
+        let want = a * (k * x0 + phi).cos();
+        worst = worst.max((got as f64 - want).abs() / a);
+    }
+    // Bilinear interpolation of a wave sampled 85 times per wavelength.
+    const TROCHOID_TOL: f64 = 2e-3;
+    eprintln!("choppy height vs trochoid: {worst:.2e} of A");
+    assert!(worst < TROCHOID_TOL, "trochoid mismatch {worst:.2e} of A");
+    // λ > 0: crests sharper and troughs flatter. The trochoid is above its mean level
+    // where |kx0 + φ| < π/2, i.e. over π/k − 2λA of each wavelength 2π/k.
+    let above = hc.iter().take(spec.nx).filter(|&&v| v > 0.0).count() as f64;
+    let want = 0.5 - lambda * a * k / std::f64::consts::PI;
+    assert!(
+        (above / spec.nx as f64 - want).abs() <= 2.0 / spec.nx as f64,
+        "crest fraction {} vs {want}",
+        above / spec.nx as f64
+    );
+    assert!(
+        hc.iter().cloned().fold(f32::MIN, f32::max) as f64 > 0.99 * a,
+        "crest height kept"
+    );
+}
+
+#[test]
+fn jacobian_is_one_without_choppiness_and_matches_the_trochoid_with_it() {
+    let (a, _, k, spec, half) = cosine(3, 256, 100.0);
+    let plan = InverseFft2::new(spec.nx, spec.ny);
+    let all = Extras {
+        slopes: true,
+        displacement: true,
+        jacobian: true,
+    };
+    let s0 = surface(&half, &spec, &plan, all, 0.0);
+    let j0 = s0.jacobian.unwrap();
+    assert_eq!(j0, Jacobian::One, "no field stored for J = 1");
+    assert!(j0.values(spec.len()).iter().all(|&j| j == 1.0));
+    let lambda = 0.5;
+    let s = surface(&half, &spec, &plan, all, lambda);
+    let d = s.displacement.unwrap();
+    let Some(Jacobian::Field(j)) = s.jacobian else {
+        panic!("a choppy sea has a Jacobian field");
+    };
+    // J = 1 − λAk cos(kx + φ) = 1 + k·(λDx)' ... = 1 − λk·h(x) for the trochoid.
+    let h = plan.process(HalfSpectrum {
+        data: half.data.clone(),
+        ..half
+    });
+    for i in 0..spec.nx {
+        let want = 1.0 - lambda * k * h[i] as f64;
+        assert!(
+            (j[i] as f64 - want).abs() < 1e-4,
+            "J[{i}] = {} vs {want}",
+            j[i]
+        );
+    }
+    assert!(d[0].iter().any(|&v| v.abs() as f64 > 0.4 * lambda * a));
+}
+
+#[test]
+fn choppy_normals_are_those_of_the_trochoid_and_still_ones_ignore_no_term() {
+    // Trochoid x = x0 − λA sin(kx0 + φ), z = A cos(kx0 + φ): the tangent along x0 is
+    // (1 − λAk cos, 0, −Ak sin), so the unit normal is ∝ (Ak sin, 0, 1 − λAk cos).
+    const TOLERANCE: f64 = 1e-4;
+    let (a, phase, k, spec, half) = cosine(3, 256, 100.0);
+    let plan = InverseFft2::new(spec.nx, spec.ny);
+    let slopes_only = Extras {
+        slopes: true,
+        ..Default::default()
+    };
+    for lambda in [0.0, 0.5] {
+        let s = surface(&half, &spec, &plan, slopes_only, lambda);
+        assert_eq!(s.displacement_gradient.is_some(), lambda != 0.0);
+        let n = s.normals().expect("slopes asked for");
+        for (i, got) in n.iter().enumerate().take(spec.nx) {
+            let u = k * i as f64 * spec.dx_m() + phase;
+            let (nx, nz) = (a * k * u.sin(), 1.0 - lambda * a * k * u.cos());
+            let len = (nx * nx + nz * nz).sqrt();
+            let want = [nx / len, 0.0, nz / len];
+            for c in 0..3 {
+                assert!(
+                    (got[c] as f64 - want[c]).abs() < TOLERANCE,
+                    "λ = {lambda}, normal[{i}][{c}] = {} vs {}",
+                    got[c],
+                    want[c]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_x_slope_sharing_the_height_transform_equals_its_own_transform() {
+    // The factor i·kx applied after the transform along y instead of before: the same
+    // field up to single-precision rounding; the height is the plain transform's, bit
+    // for bit.
+    const REL_TOL: f64 = 1e-5;
+    let ph = Phillips::new(3e-7, 8.0, 0.4, 0.5);
+    let spec = GridSpec::new(128, 96, 64.0, 48.0);
+    let half = synthesize_spectrum(&setup(spec, &ph, 0.0));
+    let plan = InverseFft2::new(spec.nx, spec.ny);
+    let copy = || HalfSpectrum {
+        data: half.data.clone(),
+        ..half
+    };
+    let alone = plan.process(
+        derivative_spectra(&half, &spec, &[Derivative::SlopeX])
+            .pop()
+            .expect("one asked for"),
+    );
+    let slopes = Extras {
+        slopes: true,
+        ..Default::default()
+    };
+    let (h, s) = surface_and_height(copy(), &spec, &plan, slopes, 0.0);
+    assert_eq!(
+        h,
+        plan.process(copy()),
+        "the height is the plain transform's"
+    );
+    let [shared, _] = s.slopes.expect("asked for");
+    let scale = alone.iter().fold(0.0f64, |m, &v| m.max(v.abs() as f64));
+    assert!(scale > 0.0);
+    let worst = shared
+        .iter()
+        .zip(&alone)
+        .fold(0.0f64, |m, (&a, &b)| m.max((a - b).abs() as f64));
+    assert!(
+        worst < REL_TOL * scale,
+        "∂h/∂x: largest difference {worst:e} of {scale:e}"
+    );
+}
+
+#[test]
+fn spectral_slopes_match_finite_differences_and_integrate_back_to_the_height() {
+    let ph = Phillips::new(3e-7, 8.0, 0.4, 0.5);
+    let spec = GridSpec::new(512, 512, 128.0, 128.0);
+    let half = synthesize_spectrum(&setup(spec, &ph, 0.0));
+    let plan = InverseFft2::new(spec.nx, spec.ny);
+    let h = plan.process(HalfSpectrum {
+        data: half.data.clone(),
+        ..half
+    });
+    let s = surface(
+        &half,
+        &spec,
+        &plan,
+        Extras {
+            slopes: true,
+            ..Default::default()
+        },
+        0.0,
+    );
+    let [sx, sy] = s.slopes.unwrap();
+    let grid = crate::grid::Grid::new(spec, h.clone());
+    let crate::measure::slopes::Slopes { dhdx: cx, dhdy: cy } =
+        crate::measure::slopes::slopes_central(&grid, true);
+    let rms =
+        |v: &[f32]| (v.iter().map(|&x| (x as f64).powi(2)).sum::<f64>() / v.len() as f64).sqrt();
+    let diff = |a: &[f32], b: &[f32]| {
+        let d: Vec<f32> = a.iter().zip(b).map(|(x, y)| x - y).collect();
+        rms(&d)
+    };
+    // The small-wave cutoff (0.5 m) leaves little energy near the grid scale (0.25 m), so
+    // central differences agree to a few percent of the slope.
+    const FD_REL_TOL: f64 = 0.05;
+    eprintln!(
+        "spectral vs central-difference slopes: {:.2e}, {:.2e} of the RMS slope",
+        diff(&sx, &cx) / rms(&sx),
+        diff(&sy, &cy) / rms(&sy)
+    );
+    assert!(
+        diff(&sx, &cx) < FD_REL_TOL * rms(&sx),
+        "x: {}",
+        diff(&sx, &cx) / rms(&sx)
+    );
+    assert!(
+        diff(&sy, &cy) < FD_REL_TOL * rms(&sy),
+        "y: {}",
+        diff(&sy, &cy) / rms(&sy)
+    );
+    // Integrating ∂h/∂x along a row (trapezoid) gives back h − h(0).
+    let nx = spec.nx;
+    let mut worst: f64 = 0.0;
+    for j in [0usize, 77, 300] {
+        let row = &h[j * nx..(j + 1) * nx];
+        let srow = &sx[j * nx..(j + 1) * nx];
+        let mut acc = row[0] as f64;
+        for i in 1..nx {
+            acc += 0.5 * (srow[i - 1] + srow[i]) as f64 * spec.dx_m();
+            worst = worst.max((acc - row[i] as f64).abs());
+        }
+    }
+    const INTEGRAL_TOL: f64 = 0.03;
+    eprintln!(
+        "integrated slope vs height: {worst:.2e} m (height RMS {:.3} m)",
+        rms(&h)
+    );
+    assert!(
+        worst < INTEGRAL_TOL * rms(&h) * 4.0,
+        "integral off by {worst}"
+    );
+}
+
+#[test]
+fn normals_of_a_flat_field_point_up_and_tilt_against_the_slope() {
+    let n = normals(&[vec![0.0, 0.5], vec![0.0, 0.0]], None);
+    assert_eq!(n[0], [0.0, 0.0, 1.0]);
+    let want = [-0.5 / 1.25f64.sqrt(), 0.0, 1.0 / 1.25f64.sqrt()];
+    for c in 0..3 {
+        assert!((n[1][c] as f64 - want[c]).abs() < 1e-6);
+    }
+}
+
+/// The straightforward normal: the f64 cross product, each component divided by its
+/// length.
+fn reference_normal(hx: f64, hy: f64, a: f64, b: f64, c: f64) -> [f64; 3] {
+    let n = [
+        c * hy - hx * (1.0 + b),
+        hx * c - (1.0 + a) * hy,
+        (1.0 + a) * (1.0 + b) - c * c,
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len == 0.0 {
+        [0.0, 0.0, 1.0]
+    } else {
+        n.map(|v| v / len)
+    }
+}
+
+#[test]
+fn normals_with_one_reciprocal_square_root_agree_with_the_f64_divisions() {
+    // Slopes up to ±8 (steeper than any sea) and displacement gradients up to ±0.9,
+    // from a fixed sequence; more points than one parallel block, an odd count.
+    let n = 40_001;
+    let field = |stream: u64, scale: f64| -> Vec<f32> {
+        (0..n as u64)
+            .map(|i| {
+                let u = (crate::rng::mix64(stream << 32 | i) >> 11) as f64 / (1u64 << 53) as f64;
+                ((u * 2.0 - 1.0) * scale) as f32
+            })
+            .collect()
+    };
+    let slopes = [field(1, 8.0), field(2, 8.0)];
+    let d = [field(3, 0.9), field(4, 0.9), field(5, 0.9)];
+    for ddisp in [None, Some([&d[0][..], &d[1][..], &d[2][..]])] {
+        let got = normals(&slopes, ddisp);
+        assert_eq!(got.len(), n);
+        let mut worst: f64 = 0.0;
+        for (p, g) in got.iter().enumerate() {
+            let [a, b, c] = ddisp.map_or([0.0; 3], |d| d.map(|f| f[p] as f64));
+            let want = reference_normal(slopes[0][p] as f64, slopes[1][p] as f64, a, b, c);
+            for k in 0..3 {
+                let e = (g[k] as f64 - want[k]).abs();
+                assert!(
+                    e <= NORMAL_F32_TOL,
+                    "choppy = {}, normal[{p}][{k}] = {} vs {}",
+                    ddisp.is_some(),
+                    g[k],
+                    want[k]
+                );
+                worst = worst.max(e);
+            }
+        }
+        eprintln!(
+            "normals (choppy = {}): worst difference {worst:.2e}",
+            ddisp.is_some()
+        );
+    }
+    // Parallel tangents (a fold edge): the normal points up, as documented.
+    let up = normals(&[vec![0.0], vec![0.0]], Some([&[-1.0], &[-1.0], &[0.0]]));
+    assert_eq!(up[0], [0.0, 0.0, 1.0]);
+}
