@@ -1,5 +1,5 @@
 use super::*;
-use crate::field::fft::{is_resolved, signed_index};
+use crate::grid::{is_resolved, signed_index};
 use crate::spectrum::frequency::{Jonswap, PiersonMoskowitz, Tma};
 use rayon::prelude::*;
 
