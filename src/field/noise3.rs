@@ -14,8 +14,9 @@
 //! interpolated gradient x components and constant parts of the four corners of that
 //! column. [`row_context`] gives the constants, [`RowCtx::column`] the coefficients of a
 //! column, and [`add_row`] fills a row from a table of columns with a branch-free loop
-//! that the compiler vectorizes (compiled for the baseline and for AVX2; the same IEEE
-//! operations in the same order on both, no fused multiply–add, so the bits do not
+//! that the compiler vectorizes (compiled for each instruction set by
+//! `simd::multiversion`, the one of the run chosen when a [`Scratch`] is made; the same
+//! IEEE operations in the same order on all, no fused multiply–add, so the bits do not
 //! depend on the processor). A single point is a row of one sample: [`noise`] gives the
 //! very bits [`add_row`] gives at that point.
 
@@ -151,17 +152,30 @@ pub fn noise(key: u32, u: f64, v: f64, w: f64, period: i64) -> f32 {
 }
 
 /// Per-thread buffers of [`add_row`].
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Scratch {
+    /// The instruction set of the row passes, chosen when the scratch is made.
+    isa: Isa,
     cols: Vec<[f32; 2]>,
     index: Vec<i32>,
     frac: Vec<f32>,
 }
 
+impl Default for Scratch {
+    /// Empty buffers, and the processor's instruction set.
+    fn default() -> Self {
+        Scratch {
+            isa: Isa::detect(),
+            cols: Vec::new(),
+            index: Vec::new(),
+            frac: Vec::new(),
+        }
+    }
+}
+
 /// `out[i] += amp · noise(key, scale·xs[i] + offset, v, w)` for every sample, where the
 /// xs are increasing. Lattice columns are hashed once per row (a cell spanning several
 /// samples is hashed once); a row finer than its samples hashes two columns per sample.
-#[allow(clippy::too_many_arguments)]
 pub fn add_row(
     ctx: &RowCtx,
     xs: &[f64],
@@ -179,15 +193,21 @@ pub fn add_row(
     let first = floor_f64(xs[0] * scale + offset);
     let last = floor_f64(xs[n - 1] * scale + offset);
     let span = last - first;
-    let Scratch { cols, index, frac } = scratch;
+    let Scratch {
+        isa,
+        cols,
+        index,
+        frac,
+    } = scratch;
+    let isa = *isa;
     index.resize(n, 0);
     frac.resize(n, 0.0);
     if span.is_finite() && span >= 0.0 && span <= (2 * n) as f64 {
         let count = span as usize + 2;
         cols.clear();
         cols.extend((0..count as i64).map(|j| ctx.column(first as i64 + j)));
-        split_run(Isa::detect(), xs, scale, offset, first, index, frac);
-        gather_run(Isa::detect(), cols, index, frac, amp, out);
+        split_run(isa, xs, scale, offset, first, index, frac);
+        gather_run(isa, cols, index, frac, amp, out);
     } else {
         // A lattice much finer than the samples (or a non-monotone row): two columns per
         // sample.
@@ -258,7 +278,10 @@ mod tests {
             let ctx = row_context(42, 3.3, -1.7, 0);
             for isa in Isa::available() {
                 let mut out = vec![0.0f32; xs.len()];
-                let mut s = Scratch::default();
+                let mut s = Scratch {
+                    isa,
+                    ..Scratch::default()
+                };
                 let first = floor_f64(xs[0] * scale + offset);
                 let last = floor_f64(xs[xs.len() - 1] * scale + offset);
                 if last - first <= (2 * xs.len()) as f64 {

@@ -26,6 +26,34 @@ pub use spreading::{Spreading, SpreadingModel};
 /// Gravitational acceleration, m/s².
 pub const G: f64 = 9.81;
 
+/// One line of grid cells, the unit of work of the line kernels: the cells centred on
+/// (kx, ky[j]) in rad/m, each `dkx` × `dky`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LineQuery<'a> {
+    pub kx: f64,
+    pub ky: &'a [f64],
+    pub dkx: f64,
+    pub dky: f64,
+}
+
+impl<'a> LineQuery<'a> {
+    /// The cells `range` of the line.
+    pub fn part(&self, range: std::ops::Range<usize>) -> LineQuery<'a> {
+        LineQuery {
+            ky: &self.ky[range],
+            ..*self
+        }
+    }
+}
+
+/// The values of a line's two half-planes: at (kx, ky[j]) into `a[j]` and at (−kx, −ky[j])
+/// into `b[j]` (every h̃(k, t) needs both).
+#[derive(Debug)]
+pub(crate) struct PairOut<'a, T> {
+    pub a: &'a mut [T],
+    pub b: &'a mut [T],
+}
+
 /// A directional wave spectrum sampled on a discrete wavevector grid.
 pub trait Spectrum: Send + Sync {
     /// E|h̃0(k)|² in m² for wavevector `(kx, ky)` in rad/m, on a grid with wavevector

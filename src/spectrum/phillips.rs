@@ -8,7 +8,7 @@
 
 use super::{G, Spectrum};
 use crate::fastmath;
-use crate::simd::{Isa, exp_line};
+use crate::simd::{Isa, exp_line_on};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f64_on};
 
 /// A validated Phillips spectrum.
@@ -18,6 +18,8 @@ pub struct Phillips {
     big_l_m: f64,
     small_l_m: f64,
     wind_dir: (f64, f64),
+    /// The instruction set of the line passes, chosen when the model is built.
+    isa: Isa,
 }
 
 impl Phillips {
@@ -30,6 +32,7 @@ impl Phillips {
             big_l_m: wind_speed_mps * wind_speed_mps / G,
             small_l_m: small_wave_m,
             wind_dir: (wind_dir_rad.cos(), wind_dir_rad.sin()),
+            isa: Isa::detect(),
         }
     }
 
@@ -77,7 +80,7 @@ impl Phillips {
     fn line(&self, kx: f64, ky: &[f64], out: &mut [f64], s: &mut LineScratch) {
         let n = ky.len().min(out.len());
         let (ky, out) = (&ky[..n], &mut out[..n]);
-        let isa = Isa::detect();
+        let isa = self.isa;
         let unique = if fft_mirrored(ky) { n / 2 + 1 } else { n };
         let LineScratch { arg, e1, e2 } = s;
         for v in [&mut *arg, &mut *e1, &mut *e2] {
@@ -87,13 +90,13 @@ impl Phillips {
             let k2 = kx * kx + y * y;
             *a = -1.0 / (k2 * self.big_l_m * self.big_l_m);
         }
-        exp_line(&arg[..unique], &mut e1[..unique]);
+        exp_line_on(isa, &arg[..unique], &mut e1[..unique]);
         if self.small_l_m > 0.0 {
             for (a, &y) in arg[..unique].iter_mut().zip(ky) {
                 let k2 = kx * kx + y * y;
                 *a = -k2 * self.small_l_m * self.small_l_m;
             }
-            exp_line(&arg[..unique], &mut e2[..unique]);
+            exp_line_on(isa, &arg[..unique], &mut e2[..unique]);
         } else {
             e2[..unique].fill(1.0);
         }

@@ -418,7 +418,7 @@ fn deep_phases(
     let base = setup
         .loop_period_s
         .map_or(0.0, |p| std::f64::consts::TAU / p);
-    deep_phase_run(kx, ky, setup.phase_time(), base, d.pha, d.phb, xa, xb);
+    deep_phase_run(kx, ky, setup.phase_time(), base, d, xa, xb);
 }
 
 multiversion! {
@@ -428,11 +428,11 @@ multiversion! {
         ky: &[f64],
         t: f64,
         base: f64,
-        pha: &[f64],
-        phb: &[f64],
+        d: Draws,
         xa: &mut [f64],
         xb: &mut [f64],
     ) {
+        let (pha, phb) = (d.pha, d.phb);
         let n = ky.len();
         let (pha, phb, xa, xb) = (&pha[..n], &phb[..n], &mut xa[..n], &mut xb[..n]);
         for j in 0..n {

@@ -24,6 +24,7 @@ use super::line::{RadialLine, RadialScratch};
 use super::{FrequencySpectrum, Kernel, POWER_EXPONENT_MIN, Radial, SpreadKind, half_one_plus};
 use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
 use crate::simd::{Isa, multiversion};
+use crate::spectrum::{LineQuery, PairOut};
 
 /// Line entries tested together for a near cell.
 const BLOCK: usize = 32;
@@ -86,24 +87,21 @@ pub(super) struct CellScratch {
 multiversion! {
     @on
     /// Ψ at the nodes (x[i], y[i]) from their radial parts (1/k, a, s), for the cos^{2s}
-    /// family, plain cos² and cos² with swell: bit for bit [`Kernel::angular`] on every
-    /// lane whose flag stays 0. Lanes where ln or exp leave their fast range get a flag;
-    /// true if there is one.
+    /// family, plain cos² and cos² with swell (the kernel's): bit for bit
+    /// [`Kernel::angular`] on every lane whose flag stays 0. Lanes where ln or exp leave
+    /// their fast range get a flag; true if there is one.
     fn angular_nodes(
         isa: Isa,
-        wx: f64,
-        wy: f64,
-        kind: SpreadKind,
+        kern: &Kernel,
         x: &[f64],
         y: &[f64],
-        inv_k: &[f64],
-        a: &[f64],
-        s: &[f64],
+        nodes: &RadialLine,
         psi: &mut [f64],
         flags: &mut [u8],
     ) -> bool {
+        let (wx, wy, kind) = (kern.wx, kern.wy, kern.kind);
         let n = x.len();
-        let (y, inv_k, a, s) = (&y[..n], &inv_k[..n], &a[..n], &s[..n]);
+        let (y, inv_k, a, s) = (&y[..n], &nodes.inv_k[..n], &nodes.a[..n], &nodes.s[..n]);
         let (psi, flags) = (&mut psi[..n], &mut flags[..n]);
         let plain = kind == SpreadKind::Cos2Plain;
         let cos2 = kind != SpreadKind::Family;
@@ -137,23 +135,19 @@ multiversion! {
 
 impl Kernel {
     /// `0.5 * cell_integral(..)` of every cell of the line that takes a Gauss–Legendre
-    /// rule, at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]`, with the
-    /// directional pass on `isa`; the midpoint cells (far or 1 × 1) are left as they are.
-    #[allow(clippy::too_many_arguments)]
+    /// rule, in both half-planes (see [`PairOut`]), with the directional pass on `isa`;
+    /// the midpoint cells (far or 1 × 1) are left as they are.
     pub(super) fn near_cells_pair_line_on(
         &self,
         isa: Isa,
         freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
+        q: &LineQuery,
+        out: PairOut<f64>,
         scratch: &mut CellScratch,
     ) {
-        let n = ky.len().min(pa.len()).min(pb.len());
-        let (ky, pa, pb) = (&ky[..n], &mut pa[..n], &mut pb[..n]);
+        let LineQuery { kx, ky, dkx, dky } = *q;
+        let n = ky.len().min(out.a.len()).min(out.b.len());
+        let (ky, pa, pb) = (&ky[..n], &mut out.a[..n], &mut out.b[..n]);
         let h = dkx.max(dky);
         let CellScratch {
             cells,
@@ -248,7 +242,7 @@ impl Kernel {
                 }
             }
         }
-        self.radial_line(unique, freq, radial_scratch, radial);
+        self.radial_line(isa, unique, freq, radial_scratch, radial);
         // The radial parts of every node.
         let count = x.len();
         let with_beta = self.kind == SpreadKind::DonelanBanner;
@@ -286,19 +280,7 @@ impl Kernel {
             }
         } else {
             flags.resize(count, 0);
-            if angular_nodes(
-                isa,
-                self.wx,
-                self.wy,
-                self.kind,
-                x,
-                y,
-                &nodes.inv_k,
-                &nodes.a,
-                &nodes.s,
-                psi,
-                flags,
-            ) {
+            if angular_nodes(isa, self, x, y, nodes, psi, flags) {
                 for i in 0..count {
                     if flags[i] != 0 {
                         psi[i] = self.angular(&node(i), x[i], y[i]);

@@ -11,7 +11,7 @@
 //!   and the cos^{2s} family without swell or plain cos² (the common seas) they are computed
 //!   in single precision from v = (ω/ωp)⁴ = G²k²/ωp⁴ alone: log2 a = const − 2 log2 v
 //!   − log2 e·(5/4 v⁻¹ − ln γ·exp(−(v^¼ − 1)²/2σ²) + ln N_s), s = s₀·2^(μ·log2(f/fp))
-//!   and log2 N_s by `log2_np_f32` ([`FastRadial`]); every other sea takes the
+//!   and log2 N_s by `log2_np_f32` (`fast_radial`); every other sea takes the
 //!   double-precision radial part ([`Kernel::radial`]) and its logarithm;
 //! - the power and the factor 2^(n₀ + …) are one `exp2_parts_f32` and an exact scaling to a
 //!   double ([`crate::fastmath::scale_f64`]).
@@ -26,18 +26,17 @@
 //! for JONSWAP γ = 7 on the single-precision lane, whose exponent sums several terms of
 //! a few units each); P below 2^−300 of the peak cell is 0.
 
+use super::fast_radial::{fast_core_pass_on, fast_inv_k_pass_on, fast_lane, fast_v_pass_on};
 use super::line::{RadialLine, RadialScratch};
-use super::{FrequencySpectrum, G, Kernel, PI, SpreadKind, U_MAX, half_one_plus_f32, power_f32};
+use super::{FrequencySpectrum, Kernel, SpreadKind, half_one_plus_f32, power_f32};
 use crate::fastmath::{
-    exp2_f32, exp2_parts_f32, ln, ln_is_special, ln_positive_normal, log2_f32, log2_unit_f32,
-    scale_f64,
+    exp2_parts_f32, ln, ln_is_special, ln_positive_normal, log2_unit_f32, scale_f64,
 };
 use crate::simd::{Isa, multiversion};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f32_on, mirror_f64_on};
-use crate::spectrum::spreading::log2_np_f32;
+use crate::spectrum::{LineQuery, PairOut};
 
 const LOG2_E: f64 = std::f64::consts::LOG2_E;
-const LOG2_E_F32: f32 = std::f32::consts::LOG2_E;
 
 /// Values whose exponent is below this (relative to the grid's peak cell, ≈ 1e-90) are 0.
 const FLOOR_LOG2: f32 = -300.0;
@@ -45,71 +44,6 @@ const FLOOR_LOG2: f32 = -300.0;
 const BELOW_FLOOR: i32 = -(1 << 30);
 /// Exponents are capped here (a value 2^(2^20) beyond the peak is +∞ anyway).
 const CAP_LOG2: f32 = 1_048_576.0;
-/// The fast radial lane takes v = (ω/ωp)⁴ below this and k² within [1/this, this]; other
-/// lanes go through the double-precision radial part.
-const FAST_RANGE: f64 = 1.2676506002282294e30; // 2^100
-/// Largest spreading coefficient (s at the peak) of the fast lane (`log2_np_f32`'s range).
-const FAST_S_MAX: f64 = 1e6;
-
-/// The single-precision radial part of deep-water JONSWAP-family seas with the cos^{2s}
-/// family (no swell) or plain cos² spreading.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct FastRadial {
-    /// G²/ωp⁴ (v = k²·this), and in single precision.
-    c_v: f64,
-    c_v32: f32,
-    /// log2(A(2π)⁴·½·c_v²/G²) (− log2 π for plain cos²) minus the grid reference l₀.
-    base: f64,
-    /// ln γ·log2 e (0: Pierson–Moskowitz, no γ term).
-    ln_gamma2: f32,
-    /// 1/(2σ²)·log2 e below and above the peak.
-    c_low2: f32,
-    c_high2: f32,
-    /// cos^{2s} family: s = s0·2^(μ·y), y = ¼ log2 v − y_shift, μ = mu_lo (y < 0) or mu_hi.
-    family: bool,
-    s0: f32,
-    mu_lo: f32,
-    mu_hi: f32,
-    y_shift: f32,
-}
-
-impl FastRadial {
-    /// The fast lane's constants, if this kernel's sea is one it covers (see the module
-    /// docs), relative to its grid reference [`Kernel::grid_l0`].
-    pub(super) fn new(kern: &Kernel) -> Option<FastRadial> {
-        let sh = kern.shape.as_ref()?;
-        let exact = &kern.table.exact;
-        let family = match kern.kind {
-            SpreadKind::Family if exact.swell16 == 0.0 => true,
-            SpreadKind::Cos2Plain => false,
-            _ => return None,
-        };
-        if kern.depth != f64::INFINITY
-            || sh.tma_h != f64::INFINITY
-            || (family && !(exact.coef >= 0.0 && exact.coef <= FAST_S_MAX))
-        {
-            return None;
-        }
-        let c_v = G * G * sh.inv_wp4;
-        let mut base = (sh.coef * 0.5 * c_v * c_v / (G * G)).log2();
-        if !family {
-            base -= PI.log2();
-        }
-        Some(FastRadial {
-            c_v,
-            c_v32: c_v as f32,
-            base: base - kern.grid_l0,
-            ln_gamma2: (sh.ln_gamma * LOG2_E) as f32,
-            c_low2: (super::C_LOW * LOG2_E) as f32,
-            c_high2: (super::C_HIGH * LOG2_E) as f32,
-            family,
-            s0: exact.coef as f32,
-            mu_lo: exact.mu_lo as f32,
-            mu_hi: exact.mu_hi as f32,
-            y_shift: (sh.x_shift * LOG2_E) as f32,
-        })
-    }
-}
 
 /// The per-|k| parts of a grid value: exponent l, spreading exponent s, 1/|k| and
 /// Donelan–Banner's β.
@@ -119,82 +53,6 @@ pub(super) struct GridLane {
     s: f32,
     inv_k: f64,
     beta: f64,
-}
-
-/// `if c { a } else { b }` by bit masks (a select the compiler keeps in registers; a
-/// plain `if` between two fields can become a gather from memory).
-#[inline(always)]
-fn select(c: bool, a: f32, b: f32) -> f32 {
-    let m = (c as u32).wrapping_neg();
-    f32::from_bits((a.to_bits() & m) | (b.to_bits() & !m))
-}
-
-/// The fast radial part's first stage: v = (ω/ωp)⁴ in single precision, and whether the
-/// lane is in the fast range (else it takes the double-precision radial part).
-#[inline(always)]
-fn fast_v(fr: &FastRadial, k2: f64) -> (f32, bool) {
-    let v = k2 * fr.c_v;
-    let in_range = (v < FAST_RANGE) & (k2 < FAST_RANGE) & (k2 * FAST_RANGE > 1.0);
-    (v as f32, in_range)
-}
-
-/// The fast radial part from v (single precision only; `off` = the line's constant, see
-/// [`Kernel::grid_scale`]): (l, s, a first 1/|k| in single precision); l = −∞ where Ψ is
-/// 0 (u = 1/v beyond `U_MAX`). `FAMILY` and `PEAKED` must equal `fr.family` and
-/// `fr.ln_gamma2 != 0`.
-#[inline(always)]
-fn fast_core<const FAMILY: bool, const PEAKED: bool>(
-    fr: &FastRadial,
-    off: f32,
-    v: f32,
-) -> (f32, f32, f32) {
-    let lv = log2_f32(v);
-    let u = 1.0 / v;
-    let mut e = -1.25 * LOG2_E_F32 * u;
-    if PEAKED {
-        let q = exp2_f32(0.25 * lv);
-        let d = q - 1.0;
-        let c = select(d <= 0.0, fr.c_low2, fr.c_high2);
-        e += fr.ln_gamma2 * exp2_f32(-(d * d) * c);
-    }
-    let (s, lz) = if FAMILY {
-        let y = 0.25 * lv - fr.y_shift;
-        let mu = select(y < 0.0, fr.mu_lo, fr.mu_hi);
-        let s = fr.s0 * exp2_f32(mu * y);
-        (s, log2_np_f32(s))
-    } else {
-        (0.0, 0.0)
-    };
-    // 1/k² = c_v·u.
-    let y0 = (fr.c_v32 * u).sqrt();
-    let l = off + ((e - lz) - 2.0 * lv);
-    let zero = u > U_MAX as f32;
-    (
-        if zero { f32::NEG_INFINITY } else { l },
-        if zero { 0.0 } else { s },
-        if zero { 0.0 } else { y0 },
-    )
-}
-
-/// 1/|k| in double precision from its single-precision value (one Newton step).
-#[inline(always)]
-fn fast_inv_k(k2: f64, y0: f32) -> f64 {
-    let y = f64::from(y0);
-    y * (1.5 - 0.5 * k2 * y * y)
-}
-
-/// One lane of the fast radial part at k²: (l, s, 1/|k|, needs the double-precision
-/// radial part), the three stages in a row.
-#[inline(always)]
-fn fast_lane(fr: &FastRadial, off: f32, k2: f64) -> (f32, f32, f64, bool) {
-    let (v, in_range) = fast_v(fr, k2);
-    let (l, s, y0) = match (fr.family, fr.ln_gamma2 != 0.0) {
-        (true, false) => fast_core::<true, false>(fr, off, v),
-        (true, true) => fast_core::<true, true>(fr, off, v),
-        (false, false) => fast_core::<false, false>(fr, off, v),
-        (false, true) => fast_core::<false, true>(fr, off, v),
-    };
-    (l, s, fast_inv_k(k2, y0), !in_range)
 }
 
 /// The grid exponent of a double-precision radial value `a` (0 and subnormals: −∞).
@@ -225,71 +83,6 @@ fn value(l: f32, s: f32, c: f64, m: f64, n0: i32) -> f64 {
 
 multiversion! {
     @on
-    /// [`fast_v`] of every k²; true if a lane is out of the fast range (flagged).
-    fn fast_v_pass_on(isa: Isa, fr: &FastRadial, k2: &[f64], v: &mut [f32], flags: &mut [u8]) -> bool {
-        let n = k2.len();
-        let (v, flags) = (&mut v[..n], &mut flags[..n]);
-        let mut any = 0u8;
-        for i in 0..n {
-            let ok;
-            (v[i], ok) = fast_v(fr, k2[i]);
-            flags[i] = !ok as u8;
-            any |= !ok as u8;
-        }
-        any != 0
-    }
-}
-
-multiversion! {
-    @on
-    /// [`fast_core`] of every v (single precision only: sixteen lanes with AVX-512).
-    fn fast_core_pass_on(
-        isa: Isa,
-        fr: &FastRadial,
-        off: f32,
-        v: &[f32],
-        l: &mut [f32],
-        s: &mut [f32],
-        y0: &mut [f32],
-    ) {
-        #[inline(always)]
-        fn run<const FAMILY: bool, const PEAKED: bool>(
-            fr: &FastRadial,
-            off: f32,
-            v: &[f32],
-            l: &mut [f32],
-            s: &mut [f32],
-            y0: &mut [f32],
-        ) {
-            let n = v.len();
-            let (l, s, y0) = (&mut l[..n], &mut s[..n], &mut y0[..n]);
-            for i in 0..n {
-                (l[i], s[i], y0[i]) = fast_core::<FAMILY, PEAKED>(fr, off, v[i]);
-            }
-        }
-        match (fr.family, fr.ln_gamma2 != 0.0) {
-            (true, false) => run::<true, false>(fr, off, v, l, s, y0),
-            (true, true) => run::<true, true>(fr, off, v, l, s, y0),
-            (false, false) => run::<false, false>(fr, off, v, l, s, y0),
-            (false, true) => run::<false, true>(fr, off, v, l, s, y0),
-        }
-    }
-}
-
-multiversion! {
-    @on
-    /// [`fast_inv_k`] of every lane.
-    fn fast_inv_k_pass_on(isa: Isa, k2: &[f64], y0: &[f32], inv_k: &mut [f64]) {
-        let n = k2.len();
-        let (y0, inv_k) = (&y0[..n], &mut inv_k[..n]);
-        for i in 0..n {
-            inv_k[i] = fast_inv_k(k2[i], y0[i]);
-        }
-    }
-}
-
-multiversion! {
-    @on
     /// The grid exponents of double-precision radial values, and s in single precision.
     fn log2_pass_on(isa: Isa, l0: f64, frac: f64, r: &RadialLine, l: &mut [f32], s: &mut [f32]) {
         let n = l.len();
@@ -303,36 +96,30 @@ multiversion! {
 
 multiversion! {
     @on
-    /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `ba[j]` and
-    /// (1 − c)/2 (the argument at (−kx, −ky[j]), whose cosine is exactly −c) into `bb[j]`,
-    /// and c into `c` if `keep_c`.
+    /// The powers' arguments (1 + c)/2 in single precision at (kx, ky[j]) into `b.a[j]`
+    /// and (1 − c)/2 (the argument at (−kx, −ky[j]), whose cosine is exactly −c) into
+    /// `b.b[j]`, and c into `c` if `keep_c`; the wind direction is the kernel's.
     fn cos_pass_on(
         isa: Isa,
         keep_c: bool,
-        wx: f64,
-        wy: f64,
-        kx: f64,
-        ky: &[f64],
+        kern: &Kernel,
+        q: &LineQuery,
         inv_k: &[f64],
         c: &mut [f64],
-        ba: &mut [f32],
-        bb: &mut [f32],
+        b: PairOut<f32>,
     ) {
         #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
         fn run<const KEEP_C: bool>(
-            wx: f64,
-            wy: f64,
-            kx: f64,
-            ky: &[f64],
+            (wx, wy): (f64, f64),
+            q: &LineQuery,
             inv_k: &[f64],
             c: &mut [f64],
-            ba: &mut [f32],
-            bb: &mut [f32],
+            b: PairOut<f32>,
         ) {
+            let (kx, ky) = (q.kx, q.ky);
             let n = ky.len();
             let (inv_k, c) = (&inv_k[..n], &mut c[..n]);
-            let (ba, bb) = (&mut ba[..n], &mut bb[..n]);
+            let (ba, bb) = (&mut b.a[..n], &mut b.b[..n]);
             for j in 0..n {
                 let ca = (kx * wx + ky[j] * wy) * inv_k[j];
                 if KEEP_C {
@@ -342,10 +129,11 @@ multiversion! {
                 bb[j] = half_one_plus_f32(-ca);
             }
         }
+        let wind = (kern.wx, kern.wy);
         if keep_c {
-            run::<true>(wx, wy, kx, ky, inv_k, c, ba, bb)
+            run::<true>(wind, q, inv_k, c, b)
         } else {
-            run::<false>(wx, wy, kx, ky, inv_k, c, ba, bb)
+            run::<false>(wind, q, inv_k, c, b)
         }
     }
 }
@@ -401,22 +189,20 @@ multiversion! {
 /// Entries per chunk of the value passes (their buffers stay in the L1 cache).
 const CHUNK: usize = 512;
 
-/// The values at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into `pb[j]` for every
-/// spreading but Donelan–Banner (m = c² for the cos² kinds, else 1), chunk by chunk.
-#[allow(clippy::too_many_arguments)]
+/// The values of the line's cells in both half-planes (see [`PairOut`]) for every
+/// spreading but Donelan–Banner (m = c² for the cos² kinds, else 1), chunk by chunk, from
+/// the per-|k| parts of the line.
 fn value_passes(
     isa: Isa,
     kern: &Kernel,
     n0: i32,
-    kx: f64,
-    ky: &[f64],
-    l: &[f32],
-    s: &[f32],
-    inv_k: &[f64],
-    pa: &mut [f64],
-    pb: &mut [f64],
+    q: &LineQuery,
+    lanes: LineLanes,
+    out: PairOut<f64>,
     buf: &mut ValueBuffers,
 ) {
+    let LineLanes { l, s, inv_k } = lanes;
+    let PairOut { a: pa, b: pb } = out;
     let cos2 = kern.kind != SpreadKind::Family;
     let ValueBuffers { c, ba, bb, p, e } = buf;
     c.resize(CHUNK, 0.0);
@@ -424,7 +210,7 @@ fn value_passes(
         v.resize(CHUNK, 0.0);
     }
     e.resize(CHUNK, 0);
-    let n = ky.len();
+    let n = q.ky.len();
     for start in (0..n).step_by(CHUNK) {
         let r = start..(start + CHUNK).min(n);
         let m = r.len();
@@ -435,19 +221,28 @@ fn value_passes(
             &mut p[..m],
             &mut e[..m],
         );
-        let (ky, inv_k, l, s) = (
-            &ky[r.clone()],
+        let (part, inv_k, l, s) = (
+            q.part(r.clone()),
             &inv_k[r.clone()],
             &l[r.clone()],
             &s[r.clone()],
         );
-        cos_pass_on(isa, cos2, kern.wx, kern.wy, kx, ky, inv_k, c, ba, bb);
+        cos_pass_on(isa, cos2, kern, &part, inv_k, c, PairOut { a: ba, b: bb });
         // (1 − c)/2 of one half-plane is (1 + c)/2 of the other; m = c² is the same.
         power_pass_on(isa, l, s, ba, bb, p, e);
         scale_pass_on(isa, cos2, n0, p, e, c, &mut pa[r.clone()]);
         power_pass_on(isa, l, s, bb, ba, p, e);
         scale_pass_on(isa, cos2, n0, p, e, c, &mut pb[r]);
     }
+}
+
+/// The per-|k| parts of every entry of a line: grid exponent l, spreading exponent s and
+/// 1/|k|.
+#[derive(Debug, Clone, Copy)]
+struct LineLanes<'a> {
+    l: &'a [f32],
+    s: &'a [f32],
+    inv_k: &'a [f64],
 }
 
 /// Chunk buffers of [`value_passes`].
@@ -540,21 +335,17 @@ impl Kernel {
         self.grid_value(&g, kx, ky, n0)
     }
 
-    /// [`Kernel::grid_variance`] at (kx, ky[j]) into `pa[j]` and at (−kx, −ky[j]) into
-    /// `pb[j]` for every j, bit for bit, in whole-line passes on `isa`.
-    #[allow(clippy::too_many_arguments)]
+    /// [`Kernel::grid_variance`] of every cell of the line in both half-planes (see
+    /// [`PairOut`]), bit for bit, in whole-line passes on `isa`.
     pub(super) fn grid_pair_line_on(
         &self,
         isa: Isa,
         freq: &dyn FrequencySpectrum,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
+        q: &LineQuery,
+        out: PairOut<f64>,
         scratch: &mut GridScratch,
     ) {
+        let LineQuery { kx, ky, dkx, dky } = *q;
         let n = ky.len();
         let GridScratch {
             k2,
@@ -603,7 +394,7 @@ impl Kernel {
                     }
                 }
                 None => {
-                    self.radial_line(k2, freq, radial, double);
+                    self.radial_line(isa, k2, freq, radial, double);
                     log2_pass_on(isa, self.grid_l0, frac, double, l, s);
                     inv_k.copy_from_slice(&double.inv_k[..unique]);
                     if db {
@@ -629,11 +420,12 @@ impl Kernel {
                     inv_k: inv_k[j],
                     beta: beta[j],
                 };
-                pa[j] = self.grid_value(&g, kx, ky[j], n0);
-                pb[j] = self.grid_value(&g, -kx, -ky[j], n0);
+                out.a[j] = self.grid_value(&g, kx, ky[j], n0);
+                out.b[j] = self.grid_value(&g, -kx, -ky[j], n0);
             }
             return;
         }
-        value_passes(isa, self, n0, kx, ky, l, s, inv_k, pa, pb, values);
+        let lanes = LineLanes { l, s, inv_k };
+        value_passes(isa, self, n0, q, lanes, out, values);
     }
 }

@@ -10,7 +10,7 @@ use super::{
     U_MAX, kitaigorodskii, tanh,
 };
 use crate::fastmath::{exp_fast, exp_is_special, ln_is_special, ln_positive_normal};
-use crate::simd::multiversion;
+use crate::simd::{Isa, multiversion};
 
 /// Largest γ-exponent argument the fast path takes (the scalar path uses exp(−a) up to
 /// 700; the lanes in between are redone by it).
@@ -41,20 +41,30 @@ impl RadialLine {
     }
 }
 
+/// One wavevector's dispersion quantities: k², k, ω² and c_g/(kω⁵).
+#[derive(Debug, Clone, Copy)]
+struct Dispersed {
+    k2: f64,
+    k: f64,
+    w2: f64,
+    geo: f64,
+}
+
 multiversion! {
+    @on
     /// The radial part before the spreading table: 1/k, the amplitude factor
-    /// A(2π)⁴·c_g/(kω⁵)·Φ (into `a`), the exponent −5/4 u + r ln γ (into `e`) and the
-    /// table's argument x (into `x`). True if a lane needs the scalar function.
+    /// A(2π)⁴·c_g/(kω⁵)·Φ (into `out.a`), the exponent −5/4 u + r ln γ (into `scratch.e`)
+    /// and the table's argument x (into `scratch.x`), for every k² of `k2` (`out` and
+    /// `scratch` at least as long). Lanes that need the scalar function get a flag in
+    /// `scratch.flags`; true if there is one.
     fn radial_first(
-        depth: f64,
+        isa: Isa,
         sh: &ShapeK,
+        depth: f64,
         plain: bool,
         k2: &[f64],
-        inv_k: &mut [f64],
-        a: &mut [f64],
-        e: &mut [f64],
-        x: &mut [f64],
-        flags: &mut [u8],
+        out: &mut RadialLine,
+        scratch: &mut RadialScratch,
     ) -> bool {
         let deep = depth == f64::INFINITY;
         let peaked = sh.ln_gamma != 0.0;
@@ -67,12 +77,10 @@ multiversion! {
             sh: &ShapeK,
             peaked: bool,
             plain: bool,
-            k2: f64,
-            w2: f64,
-            geo: f64,
-            k: f64,
+            d: Dispersed,
             phi_of: impl Fn(f64) -> f64,
         ) -> (f64, f64, f64, f64, bool) {
+            let Dispersed { k2, k, w2, geo } = d;
             let v = w2 * w2 * sh.inv_wp4;
             let u = 1.0 / v;
             let q = v.sqrt().sqrt();
@@ -94,31 +102,33 @@ multiversion! {
                 | ln_is_special(v);
             (1.0 / k, sh.coef * geo * phi_of(q), -1.25 * u + add, x, special)
         }
-        let n = k2.len();
-        let (inv_k, a, e, x) = (&mut inv_k[..n], &mut a[..n], &mut e[..n], &mut x[..n]);
-        let flags = &mut flags[..n];
         // Deep water without the depth factor: a loop per value of `peaked`, so that
         // without a γ peak (Pierson–Moskowitz) its exponential is not computed at all.
         #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
         fn deep_run(
             sh: &ShapeK,
             peaked: bool,
             plain: bool,
             k2: &[f64],
-            inv_k: &mut [f64],
-            a: &mut [f64],
-            e: &mut [f64],
-            x: &mut [f64],
-            flags: &mut [u8],
+            out: &mut RadialLine,
+            scratch: &mut RadialScratch,
         ) -> bool {
+            let n = k2.len();
+            let (inv_k, a) = (&mut out.inv_k[..n], &mut out.a[..n]);
+            let (e, x) = (&mut scratch.e[..n], &mut scratch.x[..n]);
+            let flags = &mut scratch.flags[..n];
             let mut any = 0u8;
-            for i in 0..k2.len() {
+            for i in 0..n {
                 let k = k2[i].sqrt();
                 let geo = 0.5 / (G * G * k2[i] * k2[i]);
+                let d = Dispersed {
+                    k2: k2[i],
+                    k,
+                    w2: G * k,
+                    geo,
+                };
                 let sp;
-                (inv_k[i], a[i], e[i], x[i], sp) =
-                    lane(sh, peaked, plain, k2[i], G * k, geo, k, |_| 1.0);
+                (inv_k[i], a[i], e[i], x[i], sp) = lane(sh, peaked, plain, d, |_| 1.0);
                 flags[i] = sp as u8;
                 any |= sp as u8;
             }
@@ -126,12 +136,16 @@ multiversion! {
         }
         if deep && !tma {
             special |= if peaked {
-                deep_run(sh, true, plain, k2, inv_k, a, e, x, flags)
+                deep_run(sh, true, plain, k2, out, scratch)
             } else {
-                deep_run(sh, false, plain, k2, inv_k, a, e, x, flags)
+                deep_run(sh, false, plain, k2, out, scratch)
             };
         } else {
             let phi_of = |q: f64| if tma { kitaigorodskii(q * sh.tma_h) } else { 1.0 };
+            let n = k2.len();
+            let (inv_k, a) = (&mut out.inv_k[..n], &mut out.a[..n]);
+            let (e, x) = (&mut scratch.e[..n], &mut scratch.x[..n]);
+            let flags = &mut scratch.flags[..n];
             for i in 0..n {
                 let k = k2[i].sqrt();
                 let (w2, geo) = if deep {
@@ -142,9 +156,14 @@ multiversion! {
                     let w2 = G * k * t;
                     (w2, G * (t + kd * (1.0 - t * t)) / (2.0 * k * w2 * w2 * w2))
                 };
+                let d = Dispersed {
+                    k2: k2[i],
+                    k,
+                    w2,
+                    geo,
+                };
                 let sp;
-                (inv_k[i], a[i], e[i], x[i], sp) =
-                    lane(sh, peaked, plain, k2[i], w2, geo, k, phi_of);
+                (inv_k[i], a[i], e[i], x[i], sp) = lane(sh, peaked, plain, d, phi_of);
                 flags[i] = sp as u8;
                 special |= sp;
             }
@@ -154,23 +173,22 @@ multiversion! {
 }
 
 multiversion! {
-    /// a ← a·exp(e − ln Z) (·1/π for plain cos²), with the table's [s, ln Z, β] at x (β
-    /// only for Donelan–Banner, 0 otherwise). Lanes that need the scalar function get a
-    /// flag; true if there is one.
+    @on
+    /// a ← a·exp(e − ln Z) (·1/π for plain cos²) for the first `n` lanes, with the
+    /// table's [s, ln Z, β] at x (β only for Donelan–Banner, 0 otherwise), after
+    /// [`radial_first`]. Lanes that need the scalar function get a flag; true if there
+    /// is one.
     fn radial_second(
+        isa: Isa,
         kern: &Kernel,
         plain: bool,
-        x: &[f64],
-        e: &[f64],
-        a: &mut [f64],
-        s: &mut [f64],
-        ln_z: &mut [f64],
-        beta: &mut [f64],
-        flags: &mut [u8],
+        n: usize,
+        out: &mut RadialLine,
+        scratch: &mut RadialScratch,
     ) -> bool {
-        let n = x.len();
-        let (e, a, s, ln_z, beta) = (&e[..n], &mut a[..n], &mut s[..n], &mut ln_z[..n], &mut beta[..n]);
-        let flags = &mut flags[..n];
+        let (x, e, ln_z) = (&scratch.x[..n], &scratch.e[..n], &mut scratch.ln_z[..n]);
+        let (a, s, beta) = (&mut out.a[..n], &mut out.s[..n], &mut out.beta[..n]);
+        let flags = &mut scratch.flags[..n];
         let with_beta = kern.kind == SpreadKind::DonelanBanner;
         let mut any = 0u8;
         // The table (scalar loads), then the exponentials (vectorized).
@@ -203,17 +221,27 @@ pub(super) struct RadialScratch {
     flags: Vec<u8>,
 }
 
+impl RadialScratch {
+    /// Length n (the contents are overwritten by the passes).
+    fn resize(&mut self, n: usize) {
+        for v in [&mut self.e, &mut self.x, &mut self.ln_z] {
+            v.resize(n, 0.0);
+        }
+        self.flags.resize(n, 0);
+    }
+}
+
 impl Kernel {
     /// The radial parts of every k² in `k2s` into `out`, bit for bit those of
-    /// [`Kernel::radial`].
+    /// [`Kernel::radial`], with the passes on `isa`.
     pub(super) fn radial_line(
         &self,
+        isa: Isa,
         k2s: &[f64],
         freq: &dyn FrequencySpectrum,
         scratch: &mut RadialScratch,
         out: &mut RadialLine,
     ) {
-        let RadialScratch { e, x, ln_z, flags } = scratch;
         let n = k2s.len();
         out.resize(n);
         let Some(sh) = &self.shape else {
@@ -223,38 +251,15 @@ impl Kernel {
             return;
         };
         let plain = self.kind == SpreadKind::Cos2Plain;
-        e.resize(n, 0.0);
-        x.resize(n, 0.0);
-        flags.resize(n, 0);
-        let first = radial_first(
-            self.depth,
-            sh,
-            plain,
-            k2s,
-            &mut out.inv_k,
-            &mut out.a,
-            e,
-            x,
-            flags,
-        );
-        ln_z.resize(n, 0.0);
-        let second = radial_second(
-            self,
-            plain,
-            x,
-            e,
-            &mut out.a,
-            &mut out.s,
-            ln_z,
-            &mut out.beta,
-            flags,
-        );
+        scratch.resize(n);
+        let first = radial_first(isa, sh, self.depth, plain, k2s, out, scratch);
+        let second = radial_second(isa, self, plain, n, out, scratch);
         if first || second {
             // Lanes outside the fast ranges (k² = 0, u beyond the floor, huge γ
             // arguments, x outside the spreading table): the scalar function for those;
             // it is the reference.
             for (i, &k2) in k2s.iter().enumerate() {
-                if flags[i] != 0 {
+                if scratch.flags[i] != 0 {
                     out.set(i, self.radial(k2, freq));
                 }
             }
