@@ -1,6 +1,7 @@
 //! The layers of the library import only downward (docs/architecture.md): each top-level
 //! module may `use` only modules of a lower layer, never one of its own layer or above.
-//! Test modules are not checked (a test may build its inputs with anything).
+//! Test modules are not checked (a test may build its inputs with anything): inline
+//! `#[cfg(test)]` modules and the `tests.rs` files beside their modules.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -101,6 +102,16 @@ fn imports_point_only_to_lower_layers() {
     for f in &files {
         let m = module_of(&src, f).unwrap();
         let Some(layer) = layer_of(&m) else { continue };
+        // A module's `tests.rs` beside it is a test module (`#[cfg(test)] mod tests;`).
+        if f.file_name().is_some_and(|n| n == "tests.rs") {
+            let parent = std::fs::read_to_string(f.with_file_name("mod.rs")).unwrap_or_default();
+            assert!(
+                parent.contains("#[cfg(test)]\nmod tests;"),
+                "{} is skipped as a test module, but its mod.rs does not declare it as one",
+                f.display()
+            );
+            continue;
+        }
         let text = std::fs::read_to_string(f).unwrap();
         for (line, name) in crate_paths(production(&text)) {
             if name == m {
