@@ -6,7 +6,7 @@
 //! seed over the same extent gives the same long waves at every resolution, and results
 //! do not depend on threads. The hash is SplitMix64's finalizer applied to a combination
 //! of the key words; it is fixed here and portable (integer arithmetic only), and the
-//! Gaussian transform uses [`crate::fastmath`], so draws are the same on every platform.
+//! Gaussian transform uses `fastmath` (portable `ln`, `sin_cos`), so draws are the same on every platform.
 
 use crate::fastmath;
 

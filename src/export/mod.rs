@@ -1,5 +1,5 @@
 //! Writing height fields to files: one writer per format behind [`Exporter`], chosen
-//! from the one table of file names in [`format`].
+//! from the one table of file names in [`format`](mod@format).
 //!
 //! The format of each output follows its extension. Every file is staged ([`Staged`]):
 //! created before any computation (so a bad path fails at once), written, and renamed

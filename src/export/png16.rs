@@ -95,7 +95,7 @@ fn encoder<W: Write>(
 
 /// Writes the PNG of an `nx` × `ny` field batch by batch, holding one batch in memory:
 /// `fill(first_row, batch)` fills the heights of rows `first_row..` (`batch.len()/nx` of
-/// them, `batch_rows` except at the end). The pixels equal [`write`]'s for the same field.
+/// them, `batch_rows` except at the end). The pixels equal [`write`](fn@write)'s for the same field.
 pub fn write_rows<W: Write>(
     w: W,
     (nx, ny): (usize, usize),

@@ -44,7 +44,7 @@ fn sink(output: &Output) -> &dyn RowSink {
         .expect("streamed outputs take rows")
 }
 
-/// Rows per batch for rows of `nx` samples: ~[`BATCH_BYTES`], a multiple of 16.
+/// Rows per batch for rows of `nx` samples: about `BATCH_BYTES` (8 MiB), a multiple of 16.
 pub fn batch_rows(nx: usize) -> usize {
     (BATCH_BYTES / (4 * nx)).max(1).div_ceil(16) * 16
 }

@@ -48,13 +48,8 @@ fn sin_cos_fix_up(x: &[f64], s: &mut [f64], c: &mut [f64]) {
     }
 }
 
-/// e[i] = fastmath::exp(x[i]) bit for bit: a branch-free pass that vectorizes, then the
-/// scalar function for lanes outside its fast range.
-pub fn exp_line(x: &[f64], e: &mut [f64]) {
-    exp_line_on(Isa::detect(), x, e);
-}
-
-/// [`exp_line`] on the given instruction set.
+/// `e[i] = fastmath::exp(x[i])` bit for bit on the instruction set `isa`: a branch-free
+/// pass that vectorizes, then the scalar function for lanes outside its fast range.
 pub(crate) fn exp_line_on(isa: Isa, x: &[f64], e: &mut [f64]) {
     assert_eq!(x.len(), e.len(), "exp_line: x and e differ in length");
     let special = exp_run(isa, x, e);
@@ -69,44 +64,12 @@ pub(crate) fn exp_line_on(isa: Isa, x: &[f64], e: &mut [f64]) {
 
 multiversion! {
     @on
-    /// The branch-free pass of [`exp_line`]; true if a lane needs the scalar function.
+    /// The branch-free pass of [`exp_line_on`]; true if a lane needs the scalar function.
     fn exp_run(isa: Isa, x: &[f64], e: &mut [f64]) -> bool {
         let mut special = false;
         for (&x, e) in x.iter().zip(e.iter_mut()) {
             special |= fastmath::exp_is_special(x);
             *e = fastmath::exp_fast(x);
-        }
-        special
-    }
-}
-
-/// o[i] = fastmath::ln(x[i]) bit for bit: a branch-free pass that vectorizes, then the
-/// scalar function for lanes that are not positive, normal and finite.
-pub fn ln_line(x: &[f64], o: &mut [f64]) {
-    ln_line_on(Isa::detect(), x, o);
-}
-
-/// [`ln_line`] on the given instruction set.
-pub(crate) fn ln_line_on(isa: Isa, x: &[f64], o: &mut [f64]) {
-    assert_eq!(x.len(), o.len(), "ln_line: x and o differ in length");
-    let special = ln_run(isa, x, o);
-    if special {
-        for (&x, o) in x.iter().zip(o.iter_mut()) {
-            if fastmath::ln_is_special(x) {
-                *o = fastmath::ln(x);
-            }
-        }
-    }
-}
-
-multiversion! {
-    @on
-    /// The branch-free pass of [`ln_line`]; true if a lane needs the scalar function.
-    fn ln_run(isa: Isa, x: &[f64], o: &mut [f64]) -> bool {
-        let mut special = false;
-        for (&x, o) in x.iter().zip(o.iter_mut()) {
-            special |= fastmath::ln_is_special(x);
-            *o = fastmath::ln_positive_normal(x);
         }
         special
     }

@@ -28,7 +28,7 @@ mod polar;
 pub(crate) use dispatch::multiversion;
 pub(crate) use isa::Isa;
 pub(crate) use lines::exp_line_on;
-pub use lines::{exp_line, ln_line, sin_cos_line};
+pub use lines::sin_cos_line;
 pub use polar::polar_line;
 
 #[cfg(test)]

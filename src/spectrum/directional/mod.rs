@@ -48,7 +48,7 @@
 //! spectrum, runs sixteen lanes wide with AVX-512, and the amplitudes are
 //! single-precision numbers anyway. The near-peak cells of a line take the cell rule in
 //! whole-array passes (see `cells`); [`DirectionalSpectrum::psi`] and the cell rule keep
-//! double precision. Only basic IEEE operations and [`crate::fastmath`]
+//! double precision. Only basic IEEE operations and `fastmath`
 //! are used, so values are bit-identical on every platform.
 
 use super::frequency::{

@@ -14,7 +14,7 @@
 //! otherwise a composite Gauss–Legendre integral in ln f computed once at construction
 //! (relative error below 1e-9; see [`JonswapShape::m0_numeric`]).
 //!
-//! Elementary functions are [`crate::fastmath`]'s, so values are bit-identical on every
+//! Elementary functions are `fastmath`'s, so values are bit-identical on every
 //! platform.
 
 use super::G;
