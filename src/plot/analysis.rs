@@ -10,22 +10,9 @@ const PLOT_DECADES: f64 = 8.0;
 /// Font of every text in the plot.
 const FONT: &str = "sans-serif";
 
-/// A number with 3 significant digits and no trailing zeros (`0.0123`, `45.6`, `1e-5`).
+/// A label of S(k)'s plot: [`super::short_number`] in exponent form below 10⁻³.
 fn short_number(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let mag = v.abs().log10().floor();
-    if !(-3.0..5.0).contains(&mag) {
-        return format!("{v:.0e}");
-    }
-    let decimals = (2.0 - mag).max(0.0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
+    super::short_number(v, -3)
 }
 
 /// Draws the measured (and target) S(k) of `a` on log–log axes into an RGB buffer of

@@ -4,6 +4,28 @@
 pub mod analysis;
 pub mod spectrum;
 
+/// A number with 3 significant digits and no trailing zeros (`0.0123`, `45.6`), in
+/// exponent form (`1e-5`) below 10^`lowest` and from 10⁵ on; zero is `0`.
+fn short_number(v: f64, lowest: i32) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor();
+    if !(f64::from(lowest)..5.0).contains(&mag) {
+        return format!("{v:.0e}");
+    }
+    let decimals = (2.0 - mag).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 /// A drawing error as an I/O error (a failure while working: exit code 1).
 pub fn draw_err<E: std::fmt::Display>(e: E) -> std::io::Error {
     std::io::Error::other(format!("cannot draw the plot: {e}"))

@@ -27,22 +27,9 @@ pub const PLOT2D_DECADES: f64 = 6.0;
 /// Decades of the `--plot` vertical axis below the peak.
 const PLOT_DECADES: f64 = 6.0;
 
-/// A tick value with up to 3 significant digits and no trailing zeros.
+/// A tick value: [`super::short_number`] in exponent form below 10⁻⁴.
 fn tick_text(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    let mag = v.abs().log10().floor();
-    if !(-4.0..5.0).contains(&mag) {
-        return format!("{v:.0e}");
-    }
-    let decimals = (2.0 - mag).max(0.0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
+    super::short_number(v, -4)
 }
 
 /// Ticks of a log axis over [lo, hi]: labelled ones (1, 2, 3, 5 × 10ⁿ, fewer over many
