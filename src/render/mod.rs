@@ -1,4 +1,4 @@
-//! `seasynth render`: a shaded perspective preview of a height field.
+//! The preview renderer: a shaded perspective view of a height field (`seasynth render`, `NAME.preview.png`).
 //!
 //! Rays are cast from a pinhole [`Camera`] through several points of every pixel
 //! (`spp`, a fixed stratified pattern) and intersected with the field's bilinear surface,
