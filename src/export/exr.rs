@@ -7,7 +7,7 @@ use std::io::{Seek, Write};
 
 use exr::prelude::*;
 
-use super::sidecar::{ExrInfo, Sidecar};
+use super::sidecar::{EXR_CHANNEL as CHANNEL, ExrInfo, Sidecar};
 use super::{Describe, Exporter, FieldOut, Format, WriteSeek};
 use crate::grid::Grid;
 
@@ -33,9 +33,6 @@ impl Exporter for Exr {
         doc.exr = Some(ExrInfo::default());
     }
 }
-
-/// The name of the single channel.
-pub const CHANNEL: &str = "Y";
 
 /// Encodes `grid` as a single-channel f32 EXR.
 pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {

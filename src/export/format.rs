@@ -208,6 +208,18 @@ impl Format {
     }
 }
 
+impl MapKind {
+    /// The map `path` names (`x.normal.png` → Normal), or None for other names; an error
+    /// text when the inner name is a map's with the wrong outer extension. The names are
+    /// those of the one table in this module.
+    pub fn from_path(path: &std::path::Path) -> Result<Option<MapKind>, String> {
+        Ok(match inner_kind(path)? {
+            Some(OutputKind::Map(kind)) => Some(kind),
+            _ => None,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

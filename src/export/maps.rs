@@ -26,18 +26,6 @@ pub enum MapKind {
     Displacement,
 }
 
-impl MapKind {
-    /// The map `path` names (`x.normal.png` → Normal), or None for other names; an error
-    /// text when the inner name is a map's with the wrong outer extension. The names are
-    /// those of the one table in [`super::format`].
-    pub fn from_path(path: &std::path::Path) -> Result<Option<MapKind>, String> {
-        Ok(match super::format::inner_kind(path)? {
-            Some(super::OutputKind::Map(kind)) => Some(kind),
-            _ => None,
-        })
-    }
-}
-
 /// What a wave-state map needs besides the state.
 pub struct MapContext<'a> {
     pub params: &'a crate::config::Params,

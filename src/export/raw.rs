@@ -22,11 +22,9 @@
 
 use std::io::{self, Write};
 
-use serde::Serialize;
-
 use super::mesh::{self, Tile};
 use super::options::{ByteOrder, Engine, Tiles};
-use super::sidecar::Sidecar;
+use super::sidecar::{RawInfo, Sidecar, UnityImport, UnrealImport};
 use super::{Describe, Exporter, FieldOut, Format, HeightMapping, WriteSeek};
 use crate::error::Result;
 
@@ -302,60 +300,6 @@ pub fn write_tile<W: Write + ?Sized>(
             }
         }
     })
-}
-
-/// What Unity's "Import Raw" dialog needs.
-#[derive(Debug, Serialize)]
-pub struct UnityImport {
-    pub depth_bits: u32,
-    /// Resolution of each terrain (square).
-    pub resolution: usize,
-    /// "Windows" (little-endian) or "Mac" (big-endian).
-    pub byte_order: &'static str,
-    pub flip_vertically: bool,
-    /// Terrain size X (width), Y (height), Z (length), meters.
-    pub terrain_size_m: [f64; 3],
-    /// Place the terrain at this position (its y is the height of value 0).
-    pub terrain_position_m: [f64; 3],
-}
-
-/// What Unreal's landscape import needs.
-#[derive(Debug, Serialize)]
-pub struct UnrealImport {
-    /// Vertices of each heightmap (x, y).
-    pub resolution: [usize; 2],
-    /// Landscape scale X, Y, Z in Unreal's units (cm per vertex; Z as on import).
-    pub scale: [f64; 3],
-    pub z_scale: f64,
-    pub formula: &'static str,
-    pub decode: &'static str,
-}
-
-/// The raw outputs of one sidecar, as recorded there.
-#[derive(Debug, Serialize)]
-pub struct RawInfo {
-    /// Samples of the whole lattice (all tiles together), x then y.
-    pub size: [usize; 2],
-    /// Samples of each tile, when tiled.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub tile_size: Option<[usize; 2]>,
-    pub byte_order: ByteOrder,
-    pub layout: &'static str,
-    pub spacing_m: [f64; 2],
-    /// Distance from the first to the last sample, x and y.
-    pub span_m: [f64; 2],
-    pub resampled: bool,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub engine: Option<Engine>,
-    /// How `.r16` values encode meters.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub r16: Option<String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub r32: Option<&'static str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub unity: Option<UnityImport>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub unreal: Option<UnrealImport>,
 }
 
 impl RawLayout {

@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::mesh::MeshInfo;
-use super::raw::RawInfo;
+use super::options::{ByteOrder, Engine};
 use super::{Format, HeightMapping};
 use crate::config::Params;
 use crate::field::SynthesisInfo;
@@ -98,7 +98,7 @@ pub struct ExrInfo {
 impl Default for ExrInfo {
     fn default() -> Self {
         Self {
-            channel: super::exr::CHANNEL,
+            channel: EXR_CHANNEL,
             sample: "32-bit float, meters; uncompressed scan lines, row 0 is y = 0",
         }
     }
@@ -119,7 +119,7 @@ impl GeoTiffInfo {
         Self {
             pixel_scale_m: [spec.dx_m(), spec.dy_m(), 0.0],
             tiepoint: [0.0; 6],
-            crs: super::tiff32::CRS_CITATION,
+            crs: CRS_CITATION,
             raster_type: "PixelIsPoint: sample (i, j) at model (i*dx_m, -j*dy_m)",
             model_y: "GIS model Y = -y (row 0 at the top)",
         }
@@ -181,6 +181,66 @@ pub struct JobRecord {
     pub hash: String,
     /// The job's value of each swept key.
     pub values: BTreeMap<String, String>,
+}
+
+/// The name of an EXR height map's single channel.
+pub const EXR_CHANNEL: &str = "Y";
+
+/// The GeoTIFF citation of the coordinate system: a local engineering frame in meters.
+pub const CRS_CITATION: &str = "seasynth local engineering frame, meters";
+
+/// What Unity's "Import Raw" dialog needs.
+#[derive(Debug, Serialize)]
+pub struct UnityImport {
+    pub depth_bits: u32,
+    /// Resolution of each terrain (square).
+    pub resolution: usize,
+    /// "Windows" (little-endian) or "Mac" (big-endian).
+    pub byte_order: &'static str,
+    pub flip_vertically: bool,
+    /// Terrain size X (width), Y (height), Z (length), meters.
+    pub terrain_size_m: [f64; 3],
+    /// Place the terrain at this position (its y is the height of value 0).
+    pub terrain_position_m: [f64; 3],
+}
+
+/// What Unreal's landscape import needs.
+#[derive(Debug, Serialize)]
+pub struct UnrealImport {
+    /// Vertices of each heightmap (x, y).
+    pub resolution: [usize; 2],
+    /// Landscape scale X, Y, Z in Unreal's units (cm per vertex; Z as on import).
+    pub scale: [f64; 3],
+    pub z_scale: f64,
+    pub formula: &'static str,
+    pub decode: &'static str,
+}
+
+/// The raw outputs of one sidecar, as recorded there.
+#[derive(Debug, Serialize)]
+pub struct RawInfo {
+    /// Samples of the whole lattice (all tiles together), x then y.
+    pub size: [usize; 2],
+    /// Samples of each tile, when tiled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tile_size: Option<[usize; 2]>,
+    pub byte_order: ByteOrder,
+    pub layout: &'static str,
+    pub spacing_m: [f64; 2],
+    /// Distance from the first to the last sample, x and y.
+    pub span_m: [f64; 2],
+    pub resampled: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub engine: Option<Engine>,
+    /// How `.r16` values encode meters.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub r16: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub r32: Option<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unity: Option<UnityImport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unreal: Option<UnrealImport>,
 }
 
 #[cfg(test)]

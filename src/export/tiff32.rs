@@ -14,7 +14,7 @@ use tiff::encoder::colortype::Gray32Float;
 use tiff::encoder::{TiffEncoder, TiffKind};
 use tiff::tags::Tag;
 
-use super::sidecar::{GeoTiffInfo, Sidecar};
+use super::sidecar::{CRS_CITATION, GeoTiffInfo, Sidecar};
 use super::{Describe, Exporter, FieldOut, Format, HeightMapping, RowSink, WriteSeek};
 use crate::grid::{Grid, GridSpec};
 
@@ -60,9 +60,6 @@ impl RowSink for Tiff32 {
 
 /// Rows per strip: ~256 KiB strips for 4096-wide grids.
 const ROWS_PER_STRIP: u32 = 16;
-
-/// The citation of the frame, in GeoAsciiParams (`|` ends each string).
-pub const CRS_CITATION: &str = "seasynth local engineering frame, meters";
 
 /// GeoKey directory: version 1.1.0 and four keys (key, location, count, value):
 /// GTModelType = user-defined, GTRasterType = PixelIsPoint, GTCitation in the ASCII
