@@ -27,9 +27,10 @@ mod polar;
 
 pub(crate) use dispatch::multiversion;
 pub(crate) use isa::Isa;
-pub(crate) use lines::exp_line_on;
 pub use lines::{exp_line, ln_line, sin_cos_line};
+pub(crate) use lines::{exp_line_on, sin_cos_line_on};
 pub use polar::polar_line;
+pub(crate) use polar::polar_line_on;
 
 #[cfg(test)]
 mod tests;
