@@ -17,7 +17,7 @@ use crate::export::{FieldOut, HeightMapping, Output};
 use crate::field::{self, fft, hybrid, perlin, weight};
 use crate::grid::GridSpec;
 use crate::rng::{Stream, sub_seed};
-use crate::spectrum::Dispersion;
+use crate::spectrum::{Dispersion, LineQuery, PairOut};
 
 fn median(mut v: Vec<Duration>) -> Duration {
     v.sort();
@@ -108,9 +108,14 @@ fn amplitude_variances(setup: &fft::SpectrumSetup) -> f64 {
             || (vec![0.0; ny], vec![0.0; ny]),
             |(pa, pb), n| {
                 let kx = setup.wavevector(n as i64, 0).0;
-                setup
-                    .spectrum
-                    .amplitude_variance_pair_line(kx, &ky, dkx, dky, pa, pb);
+                let q = LineQuery {
+                    kx,
+                    ky: &ky,
+                    dkx,
+                    dky,
+                };
+                let out = PairOut { a: pa, b: pb };
+                setup.spectrum.amplitude_variance_pair_line(&q, out);
                 std::hint::black_box((&*pa, &*pb));
                 pa[ny / 3] + pb[ny / 3]
             },

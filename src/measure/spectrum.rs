@@ -47,7 +47,7 @@ use rustfft::num_complex::Complex64;
 use serde::Serialize;
 
 use crate::grid::{Grid, GridSpec, is_resolved, signed_index};
-use crate::spectrum::Spectrum;
+use crate::spectrum::{LineQuery, PairOut, Spectrum};
 
 /// Bins whose target power is at least this fraction of the largest target bin take
 /// part in the log-spectrum comparison.
@@ -294,8 +294,17 @@ fn radial_sums(half: &HalfSpectrum, kg: &KGrid, target: Option<&Target>) -> Vec<
                 let kx = kg.kx(n);
                 let w = kg.weight(n);
                 if let Some(t) = target {
-                    t.spectrum
-                        .amplitude_variance_pair_line(kx, &kg.ky, kg.dkx, kg.dky, &mut pa, &mut pb);
+                    let q = LineQuery {
+                        kx,
+                        ky: &kg.ky,
+                        dkx: kg.dkx,
+                        dky: kg.dky,
+                    };
+                    let out = PairOut {
+                        a: &mut pa,
+                        b: &mut pb,
+                    };
+                    t.spectrum.amplitude_variance_pair_line(&q, out);
                 }
                 for (m, v) in line.iter().enumerate() {
                     if n == 0 && m == 0 {

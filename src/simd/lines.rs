@@ -5,15 +5,11 @@ use crate::fastmath;
 use crate::simd::{Isa, multiversion};
 
 /// `(s[i], c[i]) = fastmath::sin_cos(x[i])` for every `i`, bit for bit, for every `x`
-/// (lanes with `|x| ≥ 1e8` or non-finite `x` are redone by the scalar function).
+/// (lanes with `|x| ≥ 1e8` or non-finite `x` are redone by the scalar function), on the
+/// instruction set `isa`.
 ///
 /// # Panics
 /// If the slices differ in length.
-pub fn sin_cos_line(x: &[f64], s: &mut [f64], c: &mut [f64]) {
-    sin_cos_line_on(Isa::detect(), x, s, c);
-}
-
-/// [`sin_cos_line`] on the given instruction set.
 pub(crate) fn sin_cos_line_on(isa: Isa, x: &[f64], s: &mut [f64], c: &mut [f64]) {
     assert!(
         x.len() == s.len() && x.len() == c.len(),

@@ -27,9 +27,8 @@ mod polar;
 
 pub(crate) use dispatch::multiversion;
 pub(crate) use isa::Isa;
-pub(crate) use lines::exp_line_on;
-pub use lines::sin_cos_line;
-pub use polar::polar_line;
+pub(crate) use lines::{exp_line_on, sin_cos_line_on};
+pub(crate) use polar::polar_line_on;
 
 #[cfg(test)]
 mod tests;

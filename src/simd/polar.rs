@@ -5,17 +5,12 @@ use crate::grid::signed_index;
 use crate::rng;
 use crate::simd::{Isa, multiversion};
 
-/// For `i` in `0..r.len()`: `(r[i], phi[i]) = rng::gaussian_polar(seed, sign·n, sign·m_i)`
+/// On the instruction set `isa`, for `i` in `0..r.len()`: `(r[i], phi[i]) = rng::gaussian_polar(seed, sign·n, sign·m_i)`
 /// with `m_i = fft::signed_index(i, ny)`, bit-identical to calling
 /// [`rng::gaussian_polar`] one by one (the products `sign·n`, `sign·m_i` wrap).
 ///
 /// # Panics
 /// If `r` and `phi` differ in length.
-pub fn polar_line(seed: u64, n: i64, sign: i64, ny: usize, r: &mut [f64], phi: &mut [f64]) {
-    polar_line_on(Isa::detect(), seed, n, sign, ny, r, phi);
-}
-
-/// [`polar_line`] on the given instruction set.
 pub(crate) fn polar_line_on(
     isa: Isa,
     seed: u64,

@@ -46,9 +46,9 @@ fn polar_line_equals_gaussian_polar_bit_for_bit() {
         }
     }
     assert!(count > 1_000_000);
-    // The public entry point, on whatever this processor has.
+    // On the instruction set this processor has.
     let (mut r, mut phi) = (vec![0.0; 4096], vec![0.0; 4096]);
-    polar_line(5, 3, -1, 4096, &mut r, &mut phi);
+    polar_line_on(Isa::detect(), 5, 3, -1, 4096, &mut r, &mut phi);
     for (i, (r, phi)) in r.into_iter().zip(phi).enumerate() {
         let (wr, wphi) = rng::gaussian_polar(5, -3, -signed_index(i, 4096));
         assert_eq!((r.to_bits(), phi.to_bits()), (wr.to_bits(), wphi.to_bits()));
@@ -196,10 +196,10 @@ fn sin_cos_line_equals_sin_cos_bit_for_bit() {
     // A line that is all specials.
     check_sin_cos_line(&specials);
     check_sin_cos_line(&[]);
-    // The public entry point.
+    // On the instruction set this processor has.
     let x: Vec<f64> = (0..4096).map(|_| rng.uniform(0.0, 3000.0)).collect();
     let (mut s, mut c) = (vec![0.0; 4096], vec![0.0; 4096]);
-    sin_cos_line(&x, &mut s, &mut c);
+    sin_cos_line_on(Isa::detect(), &x, &mut s, &mut c);
     for i in 0..4096 {
         let (ws, wc) = fastmath::sin_cos(x[i]);
         assert_eq!(
@@ -212,13 +212,13 @@ fn sin_cos_line_equals_sin_cos_bit_for_bit() {
 #[test]
 #[should_panic(expected = "differ in length")]
 fn polar_line_rejects_mismatched_slices() {
-    polar_line(1, 2, 1, 8, &mut [0.0; 8], &mut [0.0; 7]);
+    polar_line_on(Isa::detect(), 1, 2, 1, 8, &mut [0.0; 8], &mut [0.0; 7]);
 }
 
 #[test]
 #[should_panic(expected = "differ in length")]
 fn sin_cos_line_rejects_mismatched_slices() {
-    sin_cos_line(&[0.0; 8], &mut [0.0; 8], &mut [0.0; 7]);
+    sin_cos_line_on(Isa::detect(), &[0.0; 8], &mut [0.0; 8], &mut [0.0; 7]);
 }
 
 /// Prints ns per element at ny = 4096: the scalar loops (gaussian_polar and sin_cos one
@@ -253,7 +253,7 @@ fn speed() {
         ),
         (
             "polar_line".into(),
-            Box::new(|n, r, phi| polar_line(black_box(9), n, -1, NY, r, phi)),
+            Box::new(|n, r, phi| polar_line_on(Isa::detect(), black_box(9), n, -1, NY, r, phi)),
         ),
     ];
     let mut sincos: Vec<Case> = vec![
@@ -268,7 +268,7 @@ fn speed() {
         ),
         (
             "sin_cos_line".into(),
-            Box::new(|_, s, c| sin_cos_line(black_box(x), s, c)),
+            Box::new(|_, s, c| sin_cos_line_on(Isa::detect(), black_box(x), s, c)),
         ),
     ];
     for &isa in &isas {

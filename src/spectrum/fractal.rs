@@ -19,7 +19,7 @@
 
 use rayon::prelude::*;
 
-use super::Spectrum;
+use super::{LineQuery, Spectrum};
 use crate::error::ParamError;
 use crate::fastmath::{exp, ln};
 
@@ -176,9 +176,9 @@ impl Spectrum for FractalOnGrid {
         self.scale * self.fractal.psi_unnormalized(kx, ky)
     }
 
-    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
-        for (o, &y) in out.iter_mut().zip(ky) {
-            *o = self.scale * self.fractal.psi_unnormalized(kx, y);
+    fn amplitude_variance_line(&self, q: &LineQuery, out: &mut [f64]) {
+        for (o, &y) in out.iter_mut().zip(q.ky) {
+            *o = self.scale * self.fractal.psi_unnormalized(q.kx, y);
         }
     }
 }

@@ -6,7 +6,7 @@
 //! `A` reproduce their figures, and the field's variance grows with the extent), ŵ is the
 //! unit wind direction, V the wind speed and l the small-wave cutoff length.
 
-use super::{G, Spectrum};
+use super::{G, LineQuery, PairOut, Spectrum};
 use crate::fastmath;
 use crate::simd::{Isa, exp_line_on};
 use crate::spectrum::mirror::{fft_mirrored, mirror_f64_on};
@@ -118,26 +118,18 @@ impl Spectrum for Phillips {
         self.value(kx, ky)
     }
 
-    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], _dkx: f64, _dky: f64, out: &mut [f64]) {
+    fn amplitude_variance_line(&self, q: &LineQuery, out: &mut [f64]) {
         SCRATCH.with(|cell| match cell.try_borrow_mut() {
-            Ok(mut scratch) => self.line(kx, ky, out, &mut scratch),
-            Err(_) => self.line(kx, ky, out, &mut LineScratch::default()),
+            Ok(mut scratch) => self.line(q.kx, q.ky, out, &mut scratch),
+            Err(_) => self.line(q.kx, q.ky, out, &mut LineScratch::default()),
         });
     }
 
     /// P(−k) = P(k) exactly: k² is the same and cos changes sign only, so its square is
     /// the same number.
-    fn amplitude_variance_pair_line(
-        &self,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-    ) {
-        self.amplitude_variance_line(kx, ky, dkx, dky, pa);
-        pb.copy_from_slice(pa);
+    fn amplitude_variance_pair_line(&self, q: &LineQuery, out: PairOut<f64>) {
+        self.amplitude_variance_line(q, out.a);
+        out.b.copy_from_slice(out.a);
     }
 }
 
@@ -182,7 +174,13 @@ mod tests {
                 .flat_map(|ky| [0.0, 0.0123, -0.5, 3.0].map(|kx| (ky.clone(), kx)))
             {
                 let mut out = vec![0.0; ky.len()];
-                p.amplitude_variance_line(kx, &ky, 0.0, 0.0, &mut out);
+                let q = LineQuery {
+                    kx,
+                    ky: &ky,
+                    dkx: 0.0,
+                    dky: 0.0,
+                };
+                p.amplitude_variance_line(&q, &mut out);
                 for (i, (&o, &y)) in out.iter().zip(&ky).enumerate() {
                     let want = p.value(kx, y);
                     assert!(
@@ -200,7 +198,17 @@ mod tests {
         let ky: Vec<f64> = (-40..40).map(|m| m as f64 * 0.0123).collect();
         let (mut pa, mut pb) = (vec![0.0; ky.len()], vec![0.0; ky.len()]);
         for kx in [0.0, 0.0123, -0.5, 3.0] {
-            p.amplitude_variance_pair_line(kx, &ky, 0.0, 0.0, &mut pa, &mut pb);
+            let q = LineQuery {
+                kx,
+                ky: &ky,
+                dkx: 0.0,
+                dky: 0.0,
+            };
+            let out = PairOut {
+                a: &mut pa,
+                b: &mut pb,
+            };
+            p.amplitude_variance_pair_line(&q, out);
             for (i, &y) in ky.iter().enumerate() {
                 assert_eq!(pa[i].to_bits(), p.value(kx, y).to_bits(), "kx={kx} ky={y}");
                 assert_eq!(

@@ -30,8 +30,8 @@ use crate::fastmath;
 use crate::grid::{Grid, GridSpec};
 pub use crate::grid::{is_resolved, signed_index};
 use crate::rng::gaussian_polar;
-use crate::simd::{multiversion, polar_line, sin_cos_line};
-use crate::spectrum::{Dispersion, Spectrum};
+use crate::simd::{Isa, multiversion, polar_line_on, sin_cos_line_on};
+use crate::spectrum::{Dispersion, LineQuery, PairOut, Spectrum};
 
 /// Everything that fixes the random spectrum of one field.
 #[derive(Clone, Copy)]
@@ -223,14 +223,17 @@ where
             |buf, (n, line)| {
                 let n = n as i64;
                 let kx = setup.wavevector(n, 0).0;
-                setup.spectrum.amplitude_variance_pair_line(
+                let q = LineQuery {
                     kx,
-                    &buf.ky,
+                    ky: &buf.ky,
                     dkx,
                     dky,
-                    &mut buf.pa,
-                    &mut buf.pb,
-                );
+                };
+                let out = PairOut {
+                    a: &mut buf.pa,
+                    b: &mut buf.pb,
+                };
+                setup.spectrum.amplitude_variance_pair_line(&q, out);
                 kernel(n, kx, buf, line)
             },
         )
@@ -246,33 +249,36 @@ where
 /// Builds h̃(k, t) for every resolved wavevector with n ≥ 0 (Tessendorf). Values equal
 /// [`SpectrumSetup::amplitude`]'s.
 pub fn synthesize_spectrum(setup: &SpectrumSetup) -> HalfSpectrum {
+    // The instruction set of this synthesis, chosen once for all its lines.
+    let isa = Isa::detect();
     build_lines(setup, |n, kx, buf, line| {
-        // Whole-line passes that vectorize (see `field::lines`); the values are those of
+        // Whole-line passes that vectorize (see `crate::simd`); the values are those of
         // `polar_from` and `combine`, bit for bit.
-        draw_line(setup, n, buf);
+        draw_line(setup, isa, n, buf);
         let draws = Draws {
             ra: &buf.ra,
             pha: &buf.pha,
             rb: &buf.rb,
             phb: &buf.phb,
         };
-        combine_line(setup, n, kx, &buf.ky, draws, line)
+        combine_line(setup, isa, n, kx, &buf.ky, draws, line)
     })
 }
 
 /// The scaled draws ρ, φ of h̃0(k) (ra, pha) and h̃0(−k) (rb, phb) of line n, from the
-/// amplitude variances in `buf.pa`, `buf.pb`.
-fn draw_line(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) {
+/// amplitude variances in `buf.pa`, `buf.pb`, on `isa`.
+fn draw_line(setup: &SpectrumSetup, isa: Isa, n: i64, buf: &mut LineBuffers) {
     let ny = setup.spec.ny;
-    polar_line(setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
-    polar_line(setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
-    scale_draws(&buf.pa, &mut buf.ra, &mut buf.pha);
-    scale_draws(&buf.pb, &mut buf.rb, &mut buf.phb);
+    polar_line_on(isa, setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
+    polar_line_on(isa, setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
+    scale_draws(isa, &buf.pa, &mut buf.ra, &mut buf.pha);
+    scale_draws(isa, &buf.pb, &mut buf.rb, &mut buf.phb);
 }
 
 multiversion! {
+    @on
     /// `(r[j], phi[j]) = scale_draw(p[j], r[j], phi[j])` for every j.
-    fn scale_draws(p: &[f64], r: &mut [f64], phi: &mut [f64]) {
+    fn scale_draws(isa: Isa, p: &[f64], r: &mut [f64], phi: &mut [f64]) {
         let n = p.len();
         let (r, phi) = (&mut r[..n], &mut phi[..n]);
         for j in 0..n {
@@ -297,20 +303,14 @@ fn resolved_ranges(n: i64, nx: usize, ny: usize) -> [std::ops::Range<usize>; 2] 
 }
 
 multiversion! {
+    @on
     /// h̃ = ρa·(ca + i·sa) + ρb·(cb − i·sb) into `out` (as f32), and the peak
     /// max(ρa², ρb²), for one range of a line.
-    fn combine_run(
-        ra: &[f64],
-        rb: &[f64],
-        sa: &[f64],
-        ca: &[f64],
-        sb: &[f64],
-        cb: &[f64],
-        out: &mut [Complex32],
-    ) -> f64 {
+    fn combine_run(isa: Isa, ra: &[f64], rb: &[f64], e: Phasors, out: &mut [Complex32]) -> f64 {
         const LANES: usize = 8;
         let n = out.len();
-        let (ra, rb, sa, ca, sb, cb) = (&ra[..n], &rb[..n], &sa[..n], &ca[..n], &sb[..n], &cb[..n]);
+        let (ra, rb) = (&ra[..n], &rb[..n]);
+        let (sa, ca, sb, cb) = (&e.sa[..n], &e.ca[..n], &e.sb[..n], &e.cb[..n]);
         // Per-lane maxima (a reduction the compiler keeps in vector registers).
         let mut peaks = [0.0f64; LANES];
         for j in 0..n {
@@ -323,6 +323,16 @@ multiversion! {
         }
         peaks.iter().fold(0.0f64, |p, &q| p.max(q))
     }
+}
+
+/// The unit phasors of a range of a line: e^{i(φa − ωt)} = ca + i·sa and
+/// e^{i(φb − ωt)} = cb + i·sb.
+#[derive(Clone, Copy)]
+struct Phasors<'a> {
+    sa: &'a [f64],
+    ca: &'a [f64],
+    sb: &'a [f64],
+    cb: &'a [f64],
 }
 
 /// The scaled draws of one line: h̃0(k) = ρa·e^{iφa}, h̃0(−k) = ρb·e^{iφb}.
@@ -351,9 +361,11 @@ thread_local! {
 }
 
 /// h̃(k, t) = ρa·e^{i(φa − ωt)} + ρb·e^{−i(φb − ωt)} of line n into `line`, and the
-/// line's peak max(ρa², ρb²). The values of [`SpectrumSetup::amplitude`], bit for bit.
+/// line's peak max(ρa², ρb²), on `isa`. The values of [`SpectrumSetup::amplitude`], bit
+/// for bit.
 pub(crate) fn combine_line(
     setup: &SpectrumSetup,
+    isa: Isa,
     n: i64,
     kx: f64,
     ky: &[f64],
@@ -371,11 +383,15 @@ pub(crate) fn combine_line(
         }
         if setup.time_s == 0.0 {
             // ω·t = 0 (exactly what omega_t gives): the phases themselves.
-            sin_cos_line(&d.pha[..ny], &mut b.sa, &mut b.ca);
-            sin_cos_line(&d.phb[..ny], &mut b.sb, &mut b.cb);
+            sin_cos_line_on(isa, &d.pha[..ny], &mut b.sa, &mut b.ca);
+            sin_cos_line_on(isa, &d.phb[..ny], &mut b.sb, &mut b.cb);
         } else {
             if setup.dispersion == Dispersion::Deep {
-                deep_phases(setup, kx, &ky[..ny], d, &mut b.xa, &mut b.xb);
+                let x = PairOut {
+                    a: &mut b.xa,
+                    b: &mut b.xb,
+                };
+                deep_phases(setup, isa, kx, &ky[..ny], d, x);
             } else {
                 for (idx, &y) in ky.iter().enumerate().take(ny) {
                     let wt = setup.omega_t(kx, y);
@@ -383,18 +399,22 @@ pub(crate) fn combine_line(
                     b.xb[idx] = d.phb[idx] - wt;
                 }
             }
-            sin_cos_line(&b.xa, &mut b.sa, &mut b.ca);
-            sin_cos_line(&b.xb, &mut b.sb, &mut b.cb);
+            sin_cos_line_on(isa, &b.xa, &mut b.sa, &mut b.ca);
+            sin_cos_line_on(isa, &b.xb, &mut b.sb, &mut b.cb);
         }
         let mut peak = 0.0f64;
         for r in resolved_ranges(n, nx, ny) {
+            let phasors = Phasors {
+                sa: &b.sa[r.clone()],
+                ca: &b.ca[r.clone()],
+                sb: &b.sb[r.clone()],
+                cb: &b.cb[r.clone()],
+            };
             let p = combine_run(
+                isa,
                 &d.ra[r.clone()],
                 &d.rb[r.clone()],
-                &b.sa[r.clone()],
-                &b.ca[r.clone()],
-                &b.sb[r.clone()],
-                &b.cb[r.clone()],
+                phasors,
                 &mut line[r],
             );
             peak = peak.max(p);
@@ -403,38 +423,32 @@ pub(crate) fn combine_line(
     })
 }
 
-/// φa − ω·t and φb − ω·t of a line in deep water, bit for bit as with
-/// [`SpectrumSetup::omega_t`] (the time reduced by the loop period once, ω rounded to the
-/// loop's multiples per lane).
-fn deep_phases(
-    setup: &SpectrumSetup,
-    kx: f64,
-    ky: &[f64],
-    d: Draws,
-    xa: &mut [f64],
-    xb: &mut [f64],
-) {
+/// φa − ω·t into `x.a` and φb − ω·t into `x.b` for a line in deep water, bit for bit as
+/// with [`SpectrumSetup::omega_t`] (the time reduced by the loop period once, ω rounded to
+/// the loop's multiples per lane).
+fn deep_phases(setup: &SpectrumSetup, isa: Isa, kx: f64, ky: &[f64], d: Draws, x: PairOut<f64>) {
     // base = 0 stands for no loop.
     let base = setup
         .loop_period_s
         .map_or(0.0, |p| std::f64::consts::TAU / p);
-    deep_phase_run(kx, ky, setup.phase_time(), base, d, xa, xb);
+    deep_phase_run(isa, kx, ky, setup.phase_time(), base, d, x);
 }
 
 multiversion! {
+    @on
     /// See [`deep_phases`]: ω = √(g·|k|), [`loop_omega`]'s rounding where `base` > 0.
     fn deep_phase_run(
+        isa: Isa,
         kx: f64,
         ky: &[f64],
         t: f64,
         base: f64,
         d: Draws,
-        xa: &mut [f64],
-        xb: &mut [f64],
+        x: PairOut<f64>,
     ) {
         let (pha, phb) = (d.pha, d.phb);
         let n = ky.len();
-        let (pha, phb, xa, xb) = (&pha[..n], &phb[..n], &mut xa[..n], &mut xb[..n]);
+        let (pha, phb, xa, xb) = (&pha[..n], &phb[..n], &mut x.a[..n], &mut x.b[..n]);
         for j in 0..n {
             let y = ky[j];
             let w = (crate::spectrum::G * (kx * kx + y * y).sqrt()).sqrt();
@@ -449,6 +463,8 @@ multiversion! {
 /// The scaled draws of every line of a spectrum, kept so that the frames of an
 /// animation only redo the time-dependent part (sines and cosines of φ − ωt).
 pub struct Amplitudes {
+    /// The instruction set the frames' line passes run on, chosen with the draws.
+    isa: Isa,
     ky: Vec<f64>,
     /// Per line n: ρa, φa, ρb, φb, each `ny` long.
     lines: Vec<[Vec<f64>; 4]>,
@@ -458,13 +474,14 @@ pub struct Amplitudes {
 impl Amplitudes {
     /// The draws of `setup` (its time is not used).
     pub fn new(setup: &SpectrumSetup) -> Self {
+        let isa = Isa::detect();
         let ny = setup.spec.ny;
         let lines = setup.spec.nx / 2 + 1;
         let mut store: Vec<[Vec<f64>; 4]> = Vec::with_capacity(lines);
         store.resize_with(lines, Default::default);
         let slots = std::sync::Mutex::new(&mut store);
         let half = build_lines(setup, |n, _kx, buf, _line| {
-            draw_line(setup, n, buf);
+            draw_line(setup, isa, n, buf);
             let peak = buf
                 .ra
                 .iter()
@@ -483,6 +500,7 @@ impl Amplitudes {
             .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
             .collect();
         Self {
+            isa,
             ky,
             lines: store,
             h0max_m: half.h0max_m,
@@ -499,7 +517,7 @@ impl Amplitudes {
             .for_each(|(n, (line, [ra, pha, rb, phb]))| {
                 let kx = setup.wavevector(n as i64, 0).0;
                 let d = Draws { ra, pha, rb, phb };
-                combine_line(setup, n as i64, kx, &self.ky, d, line);
+                combine_line(setup, self.isa, n as i64, kx, &self.ky, d, line);
             });
         HalfSpectrum {
             nx,

@@ -105,6 +105,8 @@ pub struct TrochoidSea {
     origin_m: [f64; 2],
     antialias: bool,
     info: TrochoidInfo,
+    /// The instruction set the frames' row passes run on, chosen when the sea is built.
+    isa: Isa,
 }
 
 /// The default side of the matrix's virtual tile, in peak wavelengths: Δk = kp/3, so the
@@ -237,6 +239,7 @@ impl TrochoidSea {
             origin_m: tp.origin_m,
             antialias: tp.antialias,
             info,
+            isa: Isa::detect(),
         })
     }
 
@@ -315,6 +318,7 @@ impl TrochoidSea {
             shift,
             depth,
             origin_m: self.origin_m,
+            isa: self.isa,
         }
     }
 
@@ -375,6 +379,8 @@ pub struct Frame<'a> {
     shift: (f64, f64),
     depth: f64,
     origin_m: [f64; 2],
+    /// The sea's instruction set.
+    isa: Isa,
 }
 
 /// Per-thread buffers of [`Frame::row`].
@@ -393,9 +399,16 @@ impl Frame<'_> {
         s.xs.clear();
         s.xs.extend((0..n).map(|i| x0 + i as f64 * dx));
         out.fill(0.0);
-        let isa = Isa::detect();
         for w in &self.waves {
-            wave_run(isa, self.table, &s.xs, w.ax, w.ay * y + w.c0, w.amp, out);
+            wave_run(
+                self.isa,
+                self.table,
+                &s.xs,
+                w.ax,
+                w.ay * y + w.c0,
+                w.amp,
+                out,
+            );
         }
         if self.octaves.is_empty() {
             return;

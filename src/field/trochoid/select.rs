@@ -12,6 +12,7 @@
 
 use crate::field::fft::SpectrumSetup;
 use crate::rng;
+use crate::spectrum::LineQuery;
 
 /// One trochoid: h = amplitude·v(k·x − ωt + phase).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,9 +45,13 @@ pub fn sample_matrix(setup: &SpectrumSetup, size: usize) -> Vec<((i64, i64), f64
     let mut cells = Vec::with_capacity(size * size);
     for n in -half..half {
         let kx = setup.wavevector(n, 0).0;
-        setup
-            .spectrum
-            .amplitude_variance_line(kx, &ky, dkx, dky, &mut p);
+        let q = LineQuery {
+            kx,
+            ky: &ky,
+            dkx,
+            dky,
+        };
+        setup.spectrum.amplitude_variance_line(&q, &mut p);
         for (&m, &v) in ms.iter().zip(&p) {
             let v = if n == 0 && m == 0 { 0.0 } else { v };
             cells.push(((n, m), v));

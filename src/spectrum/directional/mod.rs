@@ -404,31 +404,25 @@ impl Spectrum for DirectionalSpectrum {
         }
     }
 
-    fn amplitude_variance_line(&self, kx: f64, ky: &[f64], dkx: f64, dky: f64, out: &mut [f64]) {
+    fn amplitude_variance_line(&self, q: &LineQuery, out: &mut [f64]) {
         let mut mirror = vec![0.0; out.len()];
-        self.amplitude_variance_pair_line(kx, ky, dkx, dky, out, &mut mirror);
+        self.amplitude_variance_pair_line(
+            q,
+            PairOut {
+                a: out,
+                b: &mut mirror,
+            },
+        );
     }
 
     /// Bit for bit the values of `amplitude_variance`: every cell by the midpoint, in
     /// whole-line passes that vectorize (see `grid`), then the cells near the peak again
     /// by the cell rule, all nodes of the line's near cells together (see `cells`).
-    fn amplitude_variance_pair_line(
-        &self,
-        kx: f64,
-        ky: &[f64],
-        dkx: f64,
-        dky: f64,
-        pa: &mut [f64],
-        pb: &mut [f64],
-    ) {
-        let n = ky.len().min(pa.len()).min(pb.len());
-        let q = LineQuery {
-            kx,
-            ky: &ky[..n],
-            dkx,
-            dky,
-        };
-        let (pa, pb) = (&mut pa[..n], &mut pb[..n]);
+    fn amplitude_variance_pair_line(&self, q: &LineQuery, out: PairOut<f64>) {
+        let n = q.ky.len().min(out.a.len()).min(out.b.len());
+        let q = q.part(0..n);
+        let LineQuery { kx, dkx, dky, .. } = q;
+        let (pa, pb) = (&mut out.a[..n], &mut out.b[..n]);
         let (isa, freq, kern) = (self.isa, self.freq.as_ref(), &self.kern);
         let mut line = |scratch: &mut LineScratch| {
             let out = PairOut { a: pa, b: pb };

@@ -362,7 +362,17 @@ fn line_equals_single_values_bit_for_bit_and_wind_rotates() {
                     (&t, -kx, &neg),
                 ] {
                     let (mut pa, mut pb) = (vec![0.0; n], vec![0.0; n]);
-                    spec.amplitude_variance_pair_line(x, lys, dk, 1.3 * dk, &mut pa, &mut pb);
+                    let q = LineQuery {
+                        kx: x,
+                        ky: lys,
+                        dkx: dk,
+                        dky: 1.3 * dk,
+                    };
+                    let out = PairOut {
+                        a: &mut pa,
+                        b: &mut pb,
+                    };
+                    spec.amplitude_variance_pair_line(&q, out);
                     for ((a, b), &y) in pa.iter().zip(&pb).zip(lys.iter()) {
                         for (got, (kx, ky)) in [(a, (x, y)), (b, (-x, -y))] {
                             let single = spec.amplitude_variance(kx, ky, dk, 1.3 * dk);
@@ -630,7 +640,17 @@ fn batched_near_peak_cells_keep_the_cell_rule_when_the_nodes_are_not_symmetric()
         for m in [0, 1, 2, 3, 5, 7, 9] {
             let kx = m as f64 * dk;
             let (mut pa, mut pb) = (vec![f64::NAN; n], vec![f64::NAN; n]);
-            s.amplitude_variance_pair_line(kx, &ky, dk, dk, &mut pa, &mut pb);
+            let q = LineQuery {
+                kx,
+                ky: &ky,
+                dkx: dk,
+                dky: dk,
+            };
+            let out = PairOut {
+                a: &mut pa,
+                b: &mut pb,
+            };
+            s.amplitude_variance_pair_line(&q, out);
             for j in 0..n {
                 if s.kern.is_far(kx * kx + ky[j] * ky[j], dk) {
                     continue;
@@ -870,9 +890,20 @@ fn timing_amplitude_variance() {
             let t = std::time::Instant::now();
             for i in 0..128 {
                 let kx = (i * (nh / 128)) as f64 * dk;
-                s.amplitude_variance_line(kx, &ky, dk, dk, &mut buf);
+                let q = LineQuery {
+                    kx,
+                    ky: &ky,
+                    dkx: dk,
+                    dky: dk,
+                };
+                s.amplitude_variance_line(&q, &mut buf);
                 std::hint::black_box(&buf);
-                s.amplitude_variance_line(-kx, &neg, dk, dk, &mut buf);
+                let mirror = LineQuery {
+                    kx: -kx,
+                    ky: &neg,
+                    ..q
+                };
+                s.amplitude_variance_line(&mirror, &mut buf);
                 std::hint::black_box(&buf);
             }
             best = best.min(t.elapsed().as_secs_f64() * 1e9 / (2 * 128 * n) as f64);
@@ -899,8 +930,19 @@ fn timing_amplitude_variance() {
                             || (vec![0.0; n], vec![0.0; n]),
                             |(a, b), i| {
                                 let kx = i as f64 * dk;
-                                s.amplitude_variance_line(kx, &ky, dk, dk, a);
-                                s.amplitude_variance_line(-kx, &neg, dk, dk, b);
+                                let q = LineQuery {
+                                    kx,
+                                    ky: &ky,
+                                    dkx: dk,
+                                    dky: dk,
+                                };
+                                s.amplitude_variance_line(&q, a);
+                                let mirror = LineQuery {
+                                    kx: -kx,
+                                    ky: &neg,
+                                    ..q
+                                };
+                                s.amplitude_variance_line(&mirror, b);
                                 a.iter().sum::<f64>() + b.iter().sum::<f64>()
                             },
                         )
