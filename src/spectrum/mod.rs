@@ -27,7 +27,7 @@ pub use spreading::{Spreading, SpreadingModel};
 pub const G: f64 = 9.81;
 
 /// One line of grid cells, the query of [`Spectrum`]'s line methods: the cells centred on
-/// (kx, ky[j]) in rad/m, each `dkx` × `dky`.
+/// `(kx, ky[j])` in rad/m, each `dkx` × `dky`.
 #[derive(Debug, Clone, Copy)]
 pub struct LineQuery<'a> {
     /// The line's kx, rad/m.
@@ -50,13 +50,13 @@ impl<'a> LineQuery<'a> {
     }
 }
 
-/// The values of a line's two half-planes: at (kx, ky[j]) into `a[j]` and at (−kx, −ky[j])
+/// The values of a line's two half-planes: at `(kx, ky[j])` into `a[j]` and at `(−kx, −ky[j])`
 /// into `b[j]` (every h̃(k, t) needs both).
 #[derive(Debug)]
 pub struct PairOut<'a, T> {
-    /// The values at (kx, ky[j]).
+    /// The values at `(kx, ky[j])`.
     pub a: &'a mut [T],
-    /// The values at the mirror cells (−kx, −ky[j]).
+    /// The values at the mirror cells `(−kx, −ky[j])`.
     pub b: &'a mut [T],
 }
 
@@ -99,7 +99,7 @@ pub trait Spectrum: Send + Sync {
     fn amplitude_variance(&self, kx: f64, ky: f64, dkx: f64, dky: f64) -> f64;
 
     /// [`amplitude_variance`](Self::amplitude_variance) of every cell of the line `q`
-    /// (kx, ky[i]), into `out[i]`. Models override it with a loop the compiler can
+    /// `(kx, ky[i])`, into `out[i]`. Models override it with a loop the compiler can
     /// vectorize; results must equal the one-at-a-time values bit for bit.
     fn amplitude_variance_line(&self, q: &LineQuery, out: &mut [f64]) {
         for (o, &y) in out.iter_mut().zip(q.ky) {
@@ -107,7 +107,7 @@ pub trait Spectrum: Send + Sync {
         }
     }
 
-    /// The line `q` (kx, ky[i]) into `out.a` and its mirror (−kx, −ky[i]) into `out.b`:
+    /// The line `q` `(kx, ky[i])` into `out.a` and its mirror `(−kx, −ky[i])` into `out.b`:
     /// the two amplitude variances every h̃(k, t) needs. Equal bit for bit to
     /// [`amplitude_variance_line`](Self::amplitude_variance_line) of each; models
     /// override it to share the work that depends on |k| only.
