@@ -5,9 +5,8 @@
 /// whole-line loops that the compiler vectorizes. The body must give the same bits on
 /// every copy (IEEE basic operations and `fastmath`'s cores only, no fused multiply–add;
 /// Rust never contracts a·b + c into one).
-///
-/// Without `@on` and the leading `isa: Isa` argument (`fn NAME(args)`), the function
-/// takes the processor's instruction set itself ([`Isa::detect`](crate::simd::Isa::detect)).
+/// Callers pass the instruction set their plan chose once (`Isa::detect` when the plan is
+/// built).
 macro_rules! multiversion {
     // `fn name(isa: Isa, …)`: the caller passes the instruction set of its plan.
     (@on $(#[$meta:meta])* $vis:vis fn $name:ident($isa:ident : Isa, $($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
@@ -50,12 +49,5 @@ macro_rules! multiversion {
             $crate::simd::Isa::Avx512 => unsafe { mv_avx512($($arg),*) },
         }
     }};
-    // `fn name(…)`: the processor's instruction set.
-    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident : $ty:ty),* $(,)?) $(-> $ret:ty)? $body:block) => {
-        $(#[$meta])*
-        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
-            $crate::simd::multiversion!(@dispatch $crate::simd::Isa::detect(), ($($arg: $ty),*) $(-> $ret)? $body)
-        }
-    };
 }
 pub(crate) use multiversion;

@@ -38,6 +38,7 @@ use rustfft::num_complex::Complex32;
 
 use super::fft::{HalfSpectrum, InverseFft2, signed_index};
 use crate::grid::GridSpec;
+use crate::simd::Isa;
 
 /// Largest number of steps of the choppy resampling …
 pub const CHOPPY_ITERATIONS: usize = 8;
@@ -469,15 +470,16 @@ fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> (f64, f64) {
 pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 3]> {
     const BLOCK: usize = 16384;
     let [hx, hy] = slopes;
+    let isa = Isa::detect();
     // Zeroed by the allocator: the pages are first touched by the parallel writes.
     let mut out = vec![[0.0f32; 3]; hx.len()];
     out.par_chunks_mut(BLOCK).enumerate().for_each(|(b, out)| {
         let r = b * BLOCK..b * BLOCK + out.len();
         let (hx, hy) = (&hx[r.clone()], &hy[r.clone()]);
         match ddisp {
-            None => still_normals(hx, hy, out),
+            None => still_normals(isa, hx, hy, out),
             Some([xx, yy, xy]) => {
-                choppy_normals(hx, hy, [&xx[r.clone()], &yy[r.clone()], &xy[r]], out)
+                choppy_normals(isa, hx, hy, [&xx[r.clone()], &yy[r.clone()], &xy[r]], out)
             }
         }
     });
@@ -489,8 +491,9 @@ pub fn normals(slopes: &[Vec<f32>; 2], ddisp: Option<[&[f32]; 3]>) -> Vec<[f32; 
 pub const NORMAL_F32_TOL: f64 = 1e-6;
 
 crate::simd::multiversion! {
+    @on
     /// λ = 0: the normal (−hx, −hy, 1)/√(1 + hx² + hy²).
-    fn still_normals(hx: &[f32], hy: &[f32], out: &mut [[f32; 3]]) {
+    fn still_normals(isa: Isa, hx: &[f32], hy: &[f32], out: &mut [[f32; 3]]) {
         for ((o, &x), &y) in out.iter_mut().zip(hx).zip(hy) {
             let r = 1.0 / (1.0 + x * x + y * y).sqrt();
             *o = [-x * r, -y * r, r];
@@ -499,9 +502,10 @@ crate::simd::multiversion! {
 }
 
 crate::simd::multiversion! {
+    @on
     /// The normal of the tangents (1 + a, c, hx) × (c, 1 + b, hy), (0, 0, 1) where they
     /// are parallel.
-    fn choppy_normals(hx: &[f32], hy: &[f32], d: [&[f32]; 3], out: &mut [[f32; 3]]) {
+    fn choppy_normals(isa: Isa, hx: &[f32], hy: &[f32], d: [&[f32]; 3], out: &mut [[f32; 3]]) {
         let [da, db, dc] = d;
         let n = out.len();
         let (hx, hy, da, db, dc) = (&hx[..n], &hy[..n], &da[..n], &db[..n], &dc[..n]);
