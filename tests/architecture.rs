@@ -102,13 +102,18 @@ fn imports_point_only_to_lower_layers() {
     for f in &files {
         let m = module_of(&src, f).unwrap();
         let Some(layer) = layer_of(&m) else { continue };
-        // A module's `tests.rs` beside it is a test module (`#[cfg(test)] mod tests;`).
-        if f.file_name().is_some_and(|n| n == "tests.rs") {
-            let parent = std::fs::read_to_string(f.with_file_name("mod.rs")).unwrap_or_default();
+        // A module's `tests.rs` or `tests/` beside it is a test module (`#[cfg(test)] mod
+        // tests;` in the module's mod.rs).
+        let rel = f.strip_prefix(&src).unwrap();
+        let parts: Vec<&str> = rel.iter().filter_map(|c| c.to_str()).collect();
+        if let Some(at) = parts.iter().position(|&c| c == "tests" || c == "tests.rs") {
+            let owner = src.join(parts[..at].join("/")).join("mod.rs");
+            let declared = std::fs::read_to_string(&owner).unwrap_or_default();
             assert!(
-                parent.contains("#[cfg(test)]\nmod tests;"),
-                "{} is skipped as a test module, but its mod.rs does not declare it as one",
-                f.display()
+                declared.contains("#[cfg(test)]\nmod tests;"),
+                "{} is skipped as a test module, but {} does not declare it as one",
+                f.display(),
+                owner.display()
             );
             continue;
         }
