@@ -224,13 +224,8 @@ pub fn points_text(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::spectrum::tests::params;
     use crate::spectrum::FrequencySpectrum;
-
-    fn params(model: SpectrumModel) -> Params {
-        let mut p = Params::default();
-        p.spectrum.model = model;
-        p
-    }
 
     #[test]
     fn frequencies_parse_and_bad_ones_are_named() {

@@ -82,13 +82,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
         }
         head.draw(&Text::new(sub, (12, 36), (FONT, 16)))
             .map_err(draw_err)?;
-        let mut chart = ChartBuilder::on(&body)
-            .margin_left(10)
-            .margin_right(25)
-            .margin_top(8)
-            .margin_bottom(8)
-            .x_label_area_size(45)
-            .y_label_area_size(75)
+        let mut chart = super::log_log_chart(&body)
             .build_cartesian_2d((k_lo..k_hi).log_scale(), (y_lo..y_hi).log_scale())
             .map_err(draw_err)?;
         chart

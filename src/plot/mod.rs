@@ -4,6 +4,21 @@
 pub mod analysis;
 pub mod spectrum;
 
+/// The chart layout both log–log plots share: margins and label areas, in pixels.
+fn log_log_chart<'a, 'b, DB: plotters::prelude::DrawingBackend>(
+    body: &'a plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+) -> plotters::prelude::ChartBuilder<'a, 'b, DB> {
+    let mut chart = plotters::prelude::ChartBuilder::on(body);
+    chart
+        .margin_left(10)
+        .margin_right(25)
+        .margin_top(8)
+        .margin_bottom(8)
+        .x_label_area_size(45)
+        .y_label_area_size(75);
+    chart
+}
+
 /// A number with 3 significant digits and no trailing zeros (`0.0123`, `45.6`), in
 /// exponent form (`1e-5`) below 10^`lowest` and from 10⁵ on; zero is `0`.
 fn short_number(v: f64, lowest: i32) -> String {

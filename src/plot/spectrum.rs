@@ -150,13 +150,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
             (FONT, 16),
         ))
         .map_err(draw_err)?;
-        let mut chart = ChartBuilder::on(&body)
-            .margin_left(10)
-            .margin_right(25)
-            .margin_top(8)
-            .margin_bottom(8)
-            .x_label_area_size(45)
-            .y_label_area_size(75)
+        let mut chart = super::log_log_chart(&body)
             .build_cartesian_2d(
                 (f_lo..f_hi)
                     .log_scale()
@@ -546,11 +540,12 @@ fn draw_wind_arrow(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::field::sea_model;
 
-    fn params(model: SpectrumModel) -> Params {
+    /// The default parameters with the spectrum `model`.
+    pub(crate) fn params(model: SpectrumModel) -> Params {
         let mut p = Params::default();
         p.spectrum.model = model;
         p
