@@ -71,4 +71,21 @@ impl Error {
     }
 }
 
+/// The exit codes of every command, for people and for schedulers (a Kubernetes
+/// `podFailurePolicy`, a Slurm epilog) to act on: retry an interruption, never bad input.
+pub mod exit {
+    /// Every output complete.
+    pub const DONE: i32 = 0;
+    /// A failure while working (a write that failed: disk full, an I/O error); the
+    /// outputs of the failed jobs are absent, never partial.
+    pub const FAILED: i32 = 1;
+    /// Bad input (a parameter, a preset, an input file, an output path, a run the memory
+    /// guard refuses): the same command fails again, do not retry.
+    pub const USAGE: i32 = 2;
+    /// Interrupted by SIGINT or SIGTERM (a scheduler's preemption, cancel or time limit):
+    /// outputs renamed before the signal are complete, no temporary file is left; safe to
+    /// retry, with `--resume` for a batch (75 is `EX_TEMPFAIL` of sysexits.h).
+    pub const INTERRUPTED: i32 = 75;
+}
+
 pub type Result<T, E = Error> = std::result::Result<T, E>;

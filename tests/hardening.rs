@@ -557,7 +557,7 @@ fn sigint_during_a_large_run_removes_its_temporary_files_and_keeps_the_earlier_o
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(
         out.status.code(),
-        Some(130),
+        Some(seasynth::error::exit::INTERRUPTED),
         "exit code after SIGINT: {stderr}"
     );
     assert!(stderr.contains("interrupted by SIGINT"), "{stderr}");
@@ -614,7 +614,7 @@ fn sigterm_during_an_animation_leaves_only_complete_frames() {
     let out = child.wait_with_output().unwrap();
     assert_eq!(
         out.status.code(),
-        Some(143),
+        Some(seasynth::error::exit::INTERRUPTED),
         "exit code after SIGTERM: {}",
         String::from_utf8_lossy(&out.stderr)
     );

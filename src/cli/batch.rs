@@ -30,9 +30,33 @@ pub struct BatchArgs {
     /// Jobs computed at once (default: cores, limited by memory)
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
-    /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1)
-    #[arg(long, value_name = "K/N")]
+    /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1);
+    /// `auto`: the slice of this scheduler task (Slurm, Kubernetes, AWS or GCP Batch), as
+    /// found without --shard (default: every job, or the scheduler task's slice)
+    #[arg(long, value_name = "K/N|auto")]
     pub shard: Option<String>,
+    // ---- Schedulers, work items and the plan ----
+    /// With --shard auto: the shards of the whole batch, when the scheduler does not export
+    /// its task count (Kubernetes) or one array was split into several submissions
+    /// (default: the scheduler's task count)
+    #[arg(long, value_name = "N")]
+    pub shard_count: Option<usize>,
+    /// With --shard auto: the shard (from 0) of this submission's first task, for an array
+    /// split into several submissions (default 0)
+    #[arg(long, value_name = "M", default_value_t = 0)]
+    pub shard_offset: usize,
+    /// Run exactly the jobs A to B (both included), every STEP-th (default STEP 1); a
+    /// render farm's chunk
+    #[arg(long, value_name = "A-B[:STEP]", conflicts_with = "shard")]
+    pub items: Option<String>,
+    /// Print every job (or those of --shard/--items): its number, name, seed and swept
+    /// values as CSV, and compute nothing
+    #[arg(long)]
+    pub plan: bool,
+    /// With --plan: print JSON instead of CSV
+    #[arg(long, requires = "plan")]
+    pub json: bool,
+    // ---- end of schedulers, work items and the plan ----
     /// Keep jobs whose files and sidecar are complete and match the job's parameters
     #[arg(long)]
     pub resume: bool,

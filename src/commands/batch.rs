@@ -25,7 +25,10 @@ use crate::export::{Format, HeightMapping, OutputKind, Staged};
 use crate::field::Synthesis;
 use crate::pipeline::batch::files::{complete_files, hash_hex, remove_stale_temporaries, suffixes};
 use crate::pipeline::batch::index::{self, Index, Row, Status};
-use crate::pipeline::batch::plan::{self, JobSpec, Manifest, NameTemplate, Shard, Sweep};
+use crate::pipeline::batch::plan::{
+    self, Items, JobSpec, Manifest, NameTemplate, Selection, Shard, Sweep,
+};
+use crate::pipeline::batch::scheduler::{self, Overrides, Task};
 use crate::pipeline::jobs::{self, Progress};
 use crate::pipeline::write::{SidecarExtras, write_field};
 
@@ -76,6 +79,8 @@ impl Job {
             seconds: None,
             hash: None,
             error: None,
+            scheduler: None,
+            task: None,
         }
     }
 
@@ -116,7 +121,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
             allowed: "the output folder of the batch".into(),
             got: "nothing".into(),
         })
-    })?;
+    });
     let manifest = match &args.manifest {
         Some(p) => Manifest::load(p)?,
         None => Manifest::default(),
@@ -128,98 +133,22 @@ pub fn run(args: BatchArgs) -> Result<()> {
     };
     let suffixes = suffixes(&formats)?;
     let options = ExportOptions::from_flags(args.export.flags())?;
-    let shard = match &args.shard {
-        Some(s) => Shard::parse(s)?,
-        None => Shard::all(),
-    };
+    let JobList {
+        jobs: mut all,
+        keys,
+        template,
+    } = job_list(&args, &manifest)?;
+    let total = all.len();
 
-    // The job list: base assignments, then each job's.
-    let mut sweeps = manifest.sweeps.clone();
-    for s in &args.sweep {
-        let s = Sweep::parse(s)?;
-        plan::check_key(&s.key, &s.values[0], &s.origin)?;
-        sweeps.push(s);
+    // ---- Schedulers, work items and the plan ----
+    let (selection, task) = selection(&args, total)?;
+    if args.plan {
+        print_plan(&all, &keys, selection, args.json)?;
+        return Ok(());
     }
-    let mut base = manifest.set.clone();
-    for s in &args.field.set {
-        base.push(Assignment::parse_set(s)?);
-    }
-    for (flag, value) in args.field.flags() {
-        base.push(Assignment::flag(flag, value));
-    }
-    let preset = args.field.preset.clone().or(manifest.preset.clone());
-    let entries = if manifest.jobs.is_empty() {
-        vec![JobSpec {
-            preset: None,
-            assignments: Vec::new(),
-        }]
-    } else {
-        manifest.jobs.clone()
-    };
-    let specs = plan::product(&entries, &sweeps)?;
-    let mut keys: Vec<String> = Vec::new();
-    for k in entries
-        .iter()
-        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
-        .chain(sweeps.iter().map(|s| &s.key))
-    {
-        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
-            keys.push(k.clone());
-        }
-    }
-    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
-        Some(t) => NameTemplate::parse(t)?,
-        None => NameTemplate::default_for(&keys),
-    };
-    let total = specs.len();
-    let mut all: Vec<Job> = specs
-        .iter()
-        .enumerate()
-        .map(|(index, spec)| {
-            let mut assignments = base.clone();
-            assignments.extend(spec.assignments.iter().cloned());
-            let params =
-                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
-                    .map_err(|e| e.to_string());
-            // A key's value: the resolved one, or as typed when the job is bad.
-            let typed = |k: &str| {
-                spec.assignments
-                    .iter()
-                    .rev()
-                    .find(|a| canonical_key(&a.key) == canonical_key(k))
-                    .map(|a| a.value.clone())
-            };
-            // The parameters as a tree once, not once per key and name placeholder.
-            let tree = params.as_ref().ok().and_then(plan::params_tree);
-            let value = |k: &str| {
-                tree.as_ref()
-                    .and_then(|t| plan::value_text(t, k))
-                    .or_else(|| typed(k))
-                    .unwrap_or_default()
-            };
-            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
-            let name = template.render(index, total, value);
-            Job {
-                index,
-                name,
-                params,
-                values,
-            }
-        })
-        .collect();
-    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
-    for j in &all {
-        if let Some(first) = names.insert(&j.name, j.index) {
-            return Err(Error::Set {
-                origin: format!("--name {}", template.text),
-                message: format!(
-                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
-                    j.index, j.name
-                ),
-            }
-            .into());
-        }
-    }
+    let dir = dir?;
+    // ---- end of schedulers, work items and the plan ----
+
     let plan_hash = {
         let text: Vec<String> = all
             .iter()
@@ -318,7 +247,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
                     let syn = s.frame(p.time_s);
                     let st = syn.grid.stats();
                     let bytes = syn.grid.data.len() as u64 * 4;
-                    let keep = shard.contains(job)
+                    let keep = selection.contains(job)
                         && !crate::pipeline::write::needs_extras(
                             p,
                             &all[job].paths(&dir, &suffixes),
@@ -396,7 +325,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
             .join("\n")
             .as_bytes(),
     );
-    let mine: Vec<usize> = (0..total).filter(|&i| shard.contains(i)).collect();
+    let mine: Vec<usize> = (0..total).filter(|&i| selection.contains(i)).collect();
     remove_stale_temporaries(&dir, mine.iter().map(|&i| all[i].name.as_str()))?;
 
     // Jobs complete from an earlier run are kept, with the statistics of their sidecar.
@@ -418,10 +347,10 @@ pub fn run(args: BatchArgs) -> Result<()> {
             Some(m) => format!(", 16-bit mapping {:.4}..{:.4} m", m.min_m, m.max_m),
             None => String::new(),
         };
-        let of = if shard.n > 1 {
-            format!(" (shard {shard}: {} of them)", mine.len())
-        } else {
-            String::new()
+        let of = match selection {
+            Selection::Shard(s) if s.n > 1 => format!(" (shard {s}: {} of them)", mine.len()),
+            Selection::Items(i) => format!(" (items {i}: {} of them)", mine.len()),
+            _ => String::new(),
         };
         eprintln!(
             "batch of {total} jobs{of} in {}: {} to do, {} kept, {workers} at once{m}",
@@ -452,6 +381,14 @@ pub fn run(args: BatchArgs) -> Result<()> {
         };
         let seconds = start.elapsed().as_secs_f64();
         let label = format!("job {i} {}", job.name);
+        // A write that failed while another run of the same job (a duplicate task on
+        // another node) completed it: its files are complete, the job is kept.
+        if let Err((message, false)) = &result {
+            if let Some(row) = kept_row(job, &suffixes, &records[i], &dir) {
+                progress.finished(&format!("{label}: complete from another run ({message})"));
+                return (row, true);
+            }
+        }
         let (row, usage) = match result {
             Ok(w) => {
                 progress.finished(&format!(
@@ -491,20 +428,40 @@ pub fn run(args: BatchArgs) -> Result<()> {
     });
     progress.finish();
     let mut io_failure = false;
-    for (row, usage) in done {
+    let stem = selection.index_stem();
+    // A kept job keeps the task that wrote it, from this shard's earlier index.
+    let earlier_tasks = earlier_tasks(&dir, &stem, &batch_hash);
+    for (mut row, usage) in done {
         io_failure |= row.status == Status::Failed && !usage;
+        if let Some(t) = &task {
+            row.scheduler = Some(t.scheduler.name().into());
+            row.task = Some(t.task.clone());
+        }
         rows.insert(row.job, row);
+    }
+    for row in rows.values_mut().filter(|r| r.status == Status::Kept) {
+        if let Some((s, t)) = earlier_tasks.get(&row.job) {
+            (row.scheduler, row.task) = (Some(s.clone()), Some(t.clone()));
+        }
     }
     let index = Index {
         tool: "seasynth".into(),
         version: env!("CARGO_PKG_VERSION").into(),
         batch: batch_hash,
         jobs: total,
-        shard: (shard.n > 1).then(|| shard.to_string()),
+        shard: match selection {
+            Selection::Shard(s) if s.n > 1 => Some(s.to_string()),
+            _ => None,
+        },
+        items: match selection {
+            Selection::Items(i) => Some(i.to_string()),
+            _ => None,
+        },
+        scheduler: task.as_ref().map(|t| t.scheduler.name().into()),
+        task: task.as_ref().map(|t| t.task.clone()),
         keys,
         rows: rows.into_values().collect(),
     };
-    let stem = index::stem((shard.n > 1).then_some((shard.k, shard.n)));
     index.write(&dir, &stem)?;
     let failed: Vec<String> = index
         .rows
@@ -541,6 +498,110 @@ pub fn run(args: BatchArgs) -> Result<()> {
     Ok(())
 }
 
+/// The jobs of a batch, in order, with the swept keys and the name template.
+struct JobList {
+    jobs: Vec<Job>,
+    keys: Vec<String>,
+    template: NameTemplate,
+}
+
+/// Every job of the batch from its definition (flags, sweeps, manifest): its number, name,
+/// parameters and swept values, whatever part of it this run does.
+fn job_list(args: &BatchArgs, manifest: &Manifest) -> Result<JobList> {
+    // The job list: base assignments, then each job's.
+    let mut sweeps = manifest.sweeps.clone();
+    for s in &args.sweep {
+        let s = Sweep::parse(s)?;
+        plan::check_key(&s.key, &s.values[0], &s.origin)?;
+        sweeps.push(s);
+    }
+    let mut base = manifest.set.clone();
+    for s in &args.field.set {
+        base.push(Assignment::parse_set(s)?);
+    }
+    for (flag, value) in args.field.flags() {
+        base.push(Assignment::flag(flag, value));
+    }
+    let preset = args.field.preset.clone().or(manifest.preset.clone());
+    let entries = if manifest.jobs.is_empty() {
+        vec![JobSpec {
+            preset: None,
+            assignments: Vec::new(),
+        }]
+    } else {
+        manifest.jobs.clone()
+    };
+    let specs = plan::product(&entries, &sweeps)?;
+    let mut keys: Vec<String> = Vec::new();
+    for k in entries
+        .iter()
+        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
+        .chain(sweeps.iter().map(|s| &s.key))
+    {
+        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
+            keys.push(k.clone());
+        }
+    }
+    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
+        Some(t) => NameTemplate::parse(t)?,
+        None => NameTemplate::default_for(&keys),
+    };
+    let total = specs.len();
+    let all: Vec<Job> = specs
+        .iter()
+        .enumerate()
+        .map(|(index, spec)| {
+            let mut assignments = base.clone();
+            assignments.extend(spec.assignments.iter().cloned());
+            let params =
+                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
+                    .map_err(|e| e.to_string());
+            // A key's value: the resolved one, or as typed when the job is bad.
+            let typed = |k: &str| {
+                spec.assignments
+                    .iter()
+                    .rev()
+                    .find(|a| canonical_key(&a.key) == canonical_key(k))
+                    .map(|a| a.value.clone())
+            };
+            // The parameters as a tree once, not once per key and name placeholder.
+            let tree = params.as_ref().ok().and_then(plan::params_tree);
+            let value = |k: &str| {
+                tree.as_ref()
+                    .and_then(|t| plan::value_text(t, k))
+                    .or_else(|| typed(k))
+                    .unwrap_or_default()
+            };
+            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
+            let name = template.render(index, total, value);
+            Job {
+                index,
+                name,
+                params,
+                values,
+            }
+        })
+        .collect();
+    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
+    for j in &all {
+        if let Some(first) = names.insert(&j.name, j.index) {
+            return Err(Error::Set {
+                origin: format!("--name {}", template.text),
+                message: format!(
+                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
+                    j.index, j.name
+                ),
+            }
+            .into());
+        }
+    }
+    Ok(JobList {
+        jobs: all,
+        keys,
+        template,
+    })
+}
+
 /// The index row of a job complete from an earlier run ([`complete_files`]).
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
@@ -551,3 +612,166 @@ fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> O
         ..job.row(Status::Kept)
     })
 }
+
+// ---- Schedulers, work items and the plan ----
+
+/// The jobs this run does, and the scheduler task it found: `--items`, `--shard K/N`,
+/// `--shard auto`, or without either the scheduler task's shard when one is found (one
+/// line says so), else every job.
+fn selection(args: &BatchArgs, total: usize) -> Result<(Selection, Option<Task>)> {
+    let over = Overrides {
+        count: args.shard_count,
+        offset: args.shard_offset,
+    };
+    let env = |k: &str| std::env::var(k).ok();
+    let from_scheduler = |task: Task| -> Result<(Selection, Option<Task>)> {
+        Ok((Selection::Shard(task.shard), Some(task)))
+    };
+    let explicit = args.items.is_some() || args.shard.as_deref().is_some_and(|s| s != "auto");
+    if explicit && (args.shard_count.is_some() || args.shard_offset > 0) {
+        return Err(Error::Param(ParamError {
+            name: "--shard-count and --shard-offset".into(),
+            allowed: "given with --shard auto, or without --shard and --items".into(),
+            got: match (&args.items, &args.shard) {
+                (Some(i), _) => format!("--items {i}"),
+                (_, s) => format!("--shard {}", s.as_deref().unwrap_or_default()),
+            },
+        })
+        .into());
+    }
+    if let Some(i) = &args.items {
+        return Ok((Selection::Items(Items::parse(i, total)?), None));
+    }
+    match args.shard.as_deref() {
+        Some("auto") => match scheduler::detect(&env, over)? {
+            Some(task) => {
+                if !args.quiet && !args.plan {
+                    eprintln!("{}", task.describe());
+                }
+                from_scheduler(task)
+            }
+            None => Err(Error::Param(ParamError {
+                name: "--shard auto".into(),
+                allowed: "run in a scheduler's array task, which sets SLURM_ARRAY_TASK_ID, \
+                          JOB_COMPLETION_INDEX, AWS_BATCH_JOB_ARRAY_INDEX or BATCH_TASK_INDEX"
+                    .into(),
+                got: "none of them set".into(),
+            })
+            .into()),
+        },
+        Some(s) => Ok((Selection::Shard(Shard::parse(s)?), None)),
+        // --plan lists the whole batch unless told which part.
+        None if args.plan => Ok((Selection::All, None)),
+        None => match scheduler::detect(&env, over)? {
+            Some(task) => {
+                if !args.quiet {
+                    eprintln!(
+                        "{} (found without --shard; --shard 1/1 runs every job)",
+                        task.describe()
+                    );
+                }
+                from_scheduler(task)
+            }
+            None if args.shard_count.is_some() || args.shard_offset > 0 => {
+                Err(Error::Param(ParamError {
+                    name: "--shard-count and --shard-offset".into(),
+                    allowed: "used in a scheduler's array task (--shard auto)".into(),
+                    got: "no scheduler's task index in the environment".into(),
+                })
+                .into())
+            }
+            None => Ok((Selection::All, None)),
+        },
+    }
+}
+
+/// The scheduler and task of each job of this shard's earlier index, when it is of the
+/// same batch.
+fn earlier_tasks(dir: &Path, stem: &str, batch: &str) -> BTreeMap<usize, (String, String)> {
+    let Ok(earlier) = Index::read(&dir.join(format!("{stem}.json"))) else {
+        return BTreeMap::new();
+    };
+    if earlier.batch != batch {
+        return BTreeMap::new();
+    }
+    earlier
+        .rows
+        .into_iter()
+        .filter_map(|r| Some((r.job, (r.scheduler?, r.task?))))
+        .collect()
+}
+
+/// One job of `--plan`.
+#[derive(Serialize)]
+struct PlanRow<'a> {
+    job: usize,
+    name: &'a str,
+    seed: Option<u64>,
+    params: &'a BTreeMap<String, String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    error: Option<&'a str>,
+}
+
+/// `--plan`: the selected jobs, in order, as CSV (`job,name,seed,<swept keys>,error`) or
+/// JSON (`{"jobs": N, "keys": [...], "rows": [...]}`) on stdout. Takes any job list, so
+/// every way of making jobs prints through it.
+fn print_plan(all: &[Job], keys: &[String], selection: Selection, json: bool) -> Result<()> {
+    // The seed has its own column.
+    let columns: Vec<&String> = keys.iter().filter(|k| canonical_key(k) != "seed").collect();
+    let rows: Vec<PlanRow> = all
+        .iter()
+        .filter(|j| selection.contains(j.index))
+        .map(|j| PlanRow {
+            job: j.index,
+            name: &j.name,
+            seed: j.params.as_ref().ok().map(|p| p.seed),
+            params: &j.values,
+            error: j.params.as_ref().err().map(String::as_str),
+        })
+        .collect();
+    let text = if json {
+        let doc = serde_json::json!({ "jobs": all.len(), "keys": keys, "rows": rows });
+        format!("{}\n", serde_json::to_string_pretty(&doc)?)
+    } else {
+        let cell = |s: &str| {
+            if s.contains([',', '"', '\n', '\r']) {
+                format!("\"{}\"", s.replace('"', "\"\""))
+            } else {
+                s.to_string()
+            }
+        };
+        let mut out = String::from("job,name,seed");
+        for k in &columns {
+            out.push(',');
+            out.push_str(&cell(k));
+        }
+        out.push_str(",error\n");
+        for r in &rows {
+            let mut cells = vec![
+                r.job.to_string(),
+                cell(r.name),
+                r.seed.map(|s| s.to_string()).unwrap_or_default(),
+            ];
+            cells.extend(
+                columns
+                    .iter()
+                    .map(|k| cell(r.params.get(*k).map_or("", String::as_str))),
+            );
+            cells.push(cell(r.error.unwrap_or("")));
+            out.push_str(&cells.join(","));
+            out.push('\n');
+        }
+        out
+    };
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        // A closed pipe (`| head`) is not an error.
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::io("stdout", e).into()),
+        _ => Ok(()),
+    }
+}
+// ---- end of schedulers, work items and the plan ----

@@ -2,8 +2,9 @@
 //!
 //! Every [`Staged`](super::Staged) file is registered here from its creation until it is
 //! renamed over its target or dropped. [`install`] starts a thread that waits for SIGINT
-//! or SIGTERM; on either it removes every registered file and exits with 128 + the signal
-//! number (130, 143). Creation, renaming and the cleanup all hold one lock, so an
+//! or SIGTERM; on either it removes every registered file and exits with
+//! [`INTERRUPTED`](crate::error::exit::INTERRUPTED) (75: interrupted, safe to retry).
+//! Creation, renaming and the cleanup all hold one lock, so an
 //! interrupted run leaves each output either complete (renamed before the signal) or
 //! absent, and no temporary file — whatever the command, with no code of its own.
 //!
@@ -60,6 +61,7 @@ pub fn install() -> std::io::Result<()> {
 
 #[cfg(unix)]
 fn start() -> std::io::Result<()> {
+    use crate::error::exit;
     use signal_hook::consts::{SIGINT, SIGTERM, SIGXFSZ};
     // SAFETY: setting a signal's disposition to SIG_IGN installs no handler code.
     unsafe {
@@ -74,10 +76,11 @@ fn start() -> std::io::Result<()> {
                 let removed = remove_all(&mut live);
                 let name = if sig == SIGINT { "SIGINT" } else { "SIGTERM" };
                 eprintln!(
-                    "Error: interrupted by {name}; removed {removed} temporary file(s), no partial output"
+                    "Error: interrupted by {name}; removed {removed} temporary file(s), no partial output; safe to retry (exit code {})",
+                    exit::INTERRUPTED
                 );
                 // The guard is held until the process ends: nothing is renamed after this.
-                std::process::exit(128 + sig);
+                std::process::exit(exit::INTERRUPTED);
             }
         })?;
     Ok(())

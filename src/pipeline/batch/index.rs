@@ -49,6 +49,13 @@ pub struct Row {
     /// The parameter hash recorded in the job's sidecar.
     pub hash: Option<String>,
     pub error: Option<String>,
+    /// The scheduler whose task ran the job (`slurm`, `kubernetes`, `aws-batch`,
+    /// `gcp-batch`), when the shard came from one (`--shard auto`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scheduler: Option<String>,
+    /// That task as the scheduler names it (Slurm: `ARRAYJOBID_TASKID`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub task: Option<String>,
 }
 
 /// `index.json`.
@@ -62,17 +69,17 @@ pub struct Index {
     pub jobs: usize,
     /// The slice this index covers (`K/N`), none for a whole or merged batch.
     pub shard: Option<String>,
+    /// The jobs this index covers when run with `--items` (`A-B`, `A-B:STEP`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub items: Option<String>,
+    /// The scheduler and task that wrote this index (`--shard auto`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scheduler: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub task: Option<String>,
     /// The swept keys, in the order of the CSV columns.
     pub keys: Vec<String>,
     pub rows: Vec<Row>,
-}
-
-/// The stem of the index files: `index`, or `index.shard-K-of-N` for a shard.
-pub fn stem(shard: Option<(usize, usize)>) -> String {
-    match shard {
-        None => "index".into(),
-        Some((k, n)) => format!("index.shard-{k}-of-{n}"),
-    }
 }
 
 fn csv_field(s: &str) -> String {
@@ -89,14 +96,16 @@ fn num(v: Option<f64>) -> String {
 
 impl Index {
     /// The CSV text: `job,name,status,<keys>,files,hs_m,min_m,max_m,mean_m,std_m,seconds,error`,
-    /// files separated by spaces.
+    /// files separated by spaces; then `scheduler,task` when a scheduler ran any job.
     pub fn csv(&self) -> String {
+        let tasks = self.rows.iter().any(|r| r.scheduler.is_some());
         let mut out = String::from("job,name,status");
         for k in &self.keys {
             out.push(',');
             out.push_str(&csv_field(k));
         }
-        out.push_str(",files,hs_m,min_m,max_m,mean_m,std_m,seconds,error\n");
+        out.push_str(",files,hs_m,min_m,max_m,mean_m,std_m,seconds,error");
+        out.push_str(if tasks { ",scheduler,task\n" } else { "\n" });
         for r in &self.rows {
             let mut cells = vec![
                 r.job.to_string(),
@@ -115,6 +124,10 @@ impl Index {
             cells.push(num(s.map(|s| s.std_m)));
             cells.push(num(r.seconds));
             cells.push(csv_field(r.error.as_deref().unwrap_or("")));
+            if tasks {
+                cells.push(csv_field(r.scheduler.as_deref().unwrap_or("")));
+                cells.push(csv_field(r.task.as_deref().unwrap_or("")));
+            }
             out.push_str(&cells.join(","));
             out.push('\n');
         }
@@ -141,10 +154,11 @@ impl Index {
     }
 }
 
-/// The index files to merge in `dir`: its shard indexes, or else its `index.json`.
+/// The index files to merge in `dir`: its shard and item indexes
+/// (`index.shard-K-of-N.json`, `index.items-A-B.json`), or else its `index.json`.
 fn indexes_in(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut shards = super::files_named(dir, |n| {
-        n.starts_with("index.shard-") && n.ends_with(".json")
+        (n.starts_with("index.shard-") || n.starts_with("index.items-")) && n.ends_with(".json")
     })
     .map_err(|e| Error::Input {
         path: dir.to_path_buf(),
@@ -157,7 +171,9 @@ fn indexes_in(dir: &Path) -> Result<Vec<PathBuf>> {
     if shards.is_empty() {
         return Err(Error::Input {
             path: dir.to_path_buf(),
-            message: "holds no batch index (index.json or index.shard-K-of-N.json)".into(),
+            message:
+                "holds no batch index (index.json, index.shard-K-of-N.json or index.items-A-B.json)"
+                    .into(),
         });
     }
     Ok(shards)
@@ -254,8 +270,11 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Index> {
     rows.sort_by_key(|r| r.job);
     index.rows = rows;
     index.shard = None;
+    index.items = None;
+    index.scheduler = None;
+    index.task = None;
     std::fs::create_dir_all(out).map_err(|e| Error::io(out, e))?;
-    index.write(out, &stem(None))?;
+    index.write(out, "index")?;
     Ok(index)
 }
 
@@ -280,6 +299,8 @@ mod tests {
             seconds: Some(0.5),
             hash: None,
             error: None,
+            scheduler: None,
+            task: None,
         }
     }
 
@@ -307,6 +328,9 @@ mod tests {
             batch: "b".into(),
             jobs: 1,
             shard: None,
+            items: None,
+            scheduler: None,
+            task: None,
             keys: vec!["a".into()],
             rows: vec![row(0)],
         };
@@ -317,5 +341,14 @@ mod tests {
             "0,\"0_a=\"\"x,y\"\"\",ok,\"x,y\",0.png 0.json,1,-0.5,0.5,0,0.25,0.5,"
         );
         assert_eq!(csv.lines().next().unwrap().split(',').count(), 12);
+        // Rows run by a scheduler's task add its two columns.
+        let mut run = index.clone();
+        run.rows[0].scheduler = Some("slurm".into());
+        run.rows[0].task = Some("7_4".into());
+        let csv = run.csv();
+        let head = csv.lines().next().unwrap();
+        assert!(head.ends_with(",error,scheduler,task"), "{head}");
+        let line = csv.lines().nth(1).unwrap();
+        assert!(line.ends_with(",0.5,,slurm,7_4"), "{line}");
     }
 }

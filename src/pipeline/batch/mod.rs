@@ -1,9 +1,10 @@
-//! Batches: the plan of jobs (sweeps, manifests, shards, name templates) and the index
-//! of what every job wrote.
+//! Batches: the plan of jobs (sweeps, manifests, shards, items, name templates), the
+//! shard a scheduler's task runs, and the index of what every job wrote.
 
 pub mod files;
 pub mod index;
 pub mod plan;
+pub mod scheduler;
 
 use std::path::{Path, PathBuf};
 

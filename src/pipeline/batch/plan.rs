@@ -356,6 +356,87 @@ impl std::fmt::Display for Shard {
     }
 }
 
+/// `--items A-B[:STEP]`: the jobs A, A + STEP, … up to B, both ends included (the
+/// chunks of render farms); `A` alone is one job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Items {
+    pub first: usize,
+    pub last: usize,
+    pub step: usize,
+}
+
+impl Items {
+    /// Parses `A-B`, `A-B:STEP` or `A` for a batch of `total` jobs.
+    pub fn parse(text: &str, total: usize) -> Result<Self> {
+        let bad = || {
+            Error::Param(crate::error::ParamError {
+                name: "--items".into(),
+                allowed: format!(
+                    "A-B or A-B:STEP, job numbers with 0 ≤ A ≤ B < {total} (the jobs of the batch) and STEP ≥ 1"
+                ),
+                got: text.into(),
+            })
+        };
+        let (range, step) = match text.split_once(':') {
+            Some((r, s)) => (r, s.trim().parse::<usize>().map_err(|_| bad())?),
+            None => (text, 1),
+        };
+        let (a, b) = range.split_once('-').unwrap_or((range, range));
+        let first: usize = a.trim().parse().map_err(|_| bad())?;
+        let last: usize = b.trim().parse().map_err(|_| bad())?;
+        if step == 0 || first > last || last >= total {
+            return Err(bad());
+        }
+        Ok(Self { first, last, step })
+    }
+
+    pub fn contains(&self, job: usize) -> bool {
+        (self.first..=self.last).contains(&job) && (job - self.first) % self.step == 0
+    }
+}
+
+impl std::fmt::Display for Items {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}-{}", self.first, self.last)?;
+        if self.step > 1 {
+            write!(f, ":{}", self.step)?;
+        }
+        Ok(())
+    }
+}
+
+/// The jobs of the batch that one run does: all, a shard, or items.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Selection {
+    All,
+    Shard(Shard),
+    Items(Items),
+}
+
+impl Selection {
+    pub fn contains(&self, job: usize) -> bool {
+        match self {
+            Selection::All => true,
+            Selection::Shard(s) => s.contains(job),
+            Selection::Items(i) => i.contains(job),
+        }
+    }
+
+    /// The stem of this run's index files: `index`, `index.shard-K-of-N`, or
+    /// `index.items-A-B` (`index.items-A-B-by-STEP`); `--merge-index` reads every one.
+    pub fn index_stem(&self) -> String {
+        match self {
+            Selection::All => "index".into(),
+            Selection::Shard(s) if s.n == 1 => "index".into(),
+            Selection::Shard(s) => format!("index.shard-{}-of-{}", s.k, s.n),
+            Selection::Items(i) if i.step > 1 => {
+                format!("index.items-{}-{}-by-{}", i.first, i.last, i.step)
+            }
+            Selection::Items(i) => format!("index.items-{}-{}", i.first, i.last),
+        }
+    }
+}
+
 /// A manifest file as written.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -619,5 +700,21 @@ mod tests {
         }
         assert!(Shard::parse("0/3").is_err() && Shard::parse("4/3").is_err());
         assert_eq!(Shard::parse("2/3").unwrap(), Shard { k: 2, n: 3 });
+    }
+
+    #[test]
+    fn items_are_inclusive_ranges_with_a_step() {
+        let i = Items::parse("3-9:3", 10).unwrap();
+        let jobs: Vec<usize> = (0..10).filter(|&j| i.contains(j)).collect();
+        assert_eq!(jobs, [3, 6, 9], "both ends included");
+        assert_eq!(i.to_string(), "3-9:3");
+        assert_eq!(Selection::Items(i).index_stem(), "index.items-3-9-by-3");
+        let one = Items::parse("4", 10).unwrap();
+        assert_eq!((one.first, one.last), (4, 4));
+        assert_eq!(Selection::Items(one).index_stem(), "index.items-4-4");
+        for bad in ["3-10", "5-4", "1-2:0", "a-b", "-3", "1-2:x"] {
+            let e = Items::parse(bad, 10).unwrap_err().to_string();
+            assert!(e.contains("--items") && e.contains("< 10"), "{bad}: {e}");
+        }
     }
 }
