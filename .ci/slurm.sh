@@ -43,9 +43,11 @@ slurm_start() {
     --pid-file="$dir/munge/munged.pid" --log-file="$dir/munge/munged.log" \
     --seed-file="$dir/munge/munged.seed" || { echo "slurm.sh: munged did not start" >&2; return 1; }
 
-  local host cpus
+  local host cpus mem
   host=$(hostname -s)
   cpus=$(nproc)
+  # The node's memory as slurmd sees it (jobs asking for --mem are refused beyond it).
+  mem=$(slurmd -C 2>/dev/null | sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p' | head -n 1)
   cat >"$dir/slurm.conf" <<EOF
 ClusterName=seasynth-test
 SlurmctldHost=$host(127.0.0.1)
@@ -73,7 +75,7 @@ ReturnToService=2
 MinJobAge=600
 KillWait=5
 MpiDefault=none
-NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=${mem:-1000} State=UNKNOWN
 PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP OverSubscribe=YES
 EOF
   export SLURM_CONF=$dir/slurm.conf

@@ -66,7 +66,7 @@ pub struct BatchArgs {
     /// How meshes, raw height maps and tiles are written
     #[command(flatten)]
     pub export: ExportArgs,
-    /// Print nothing but errors
+    /// Print nothing but errors (and the scheduler task found without --shard)
     #[arg(short, long)]
     pub quiet: bool,
     /// Worker threads (default: all cores); results do not depend on it

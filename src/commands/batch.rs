@@ -663,13 +663,12 @@ fn selection(args: &BatchArgs, total: usize) -> Result<(Selection, Option<Task>)
         // --plan lists the whole batch unless told which part.
         None if args.plan => Ok((Selection::All, None)),
         None => match scheduler::detect(&env, over)? {
+            // Said even with -q: the task runs part of the batch without being told to.
             Some(task) => {
-                if !args.quiet {
-                    eprintln!(
-                        "{} (found without --shard; --shard 1/1 runs every job)",
-                        task.describe()
-                    );
-                }
+                eprintln!(
+                    "{} (found without --shard; --shard 1/1 runs every job)",
+                    task.describe()
+                );
                 from_scheduler(task)
             }
             None if args.shard_count.is_some() || args.shard_offset > 0 => {
