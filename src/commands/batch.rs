@@ -365,8 +365,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
         let job = &all[i];
         let paths = job.paths(&dir, &suffixes);
         let start = Instant::now();
-        let result = match &job.params {
-            Err(e) => Err((e.clone(), true)),
+        let attempt = || match &job.params {
+            Err(e) => Err((e.clone(), true, false)),
             Ok(p) => {
                 let extras = SidecarExtras {
                     mapping_source: mapping.is_some().then_some(BATCH_RANGE),
@@ -374,21 +374,30 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 };
                 let syn = computed.lock().expect("no worker panicked").remove(&i);
                 write_field(p, &paths, &options, &extras, syn, args.field.force).map_err(|e| {
-                    let usage = e.downcast_ref::<Error>().is_some_and(|e| e.is_usage());
-                    (format!("{e:#}"), usage)
+                    let error = e.downcast_ref::<Error>();
+                    let usage = error.is_some_and(|e| e.is_usage());
+                    let vanished = matches!(error, Some(Error::Io { error, .. })
+                        if error.kind() == std::io::ErrorKind::NotFound);
+                    (format!("{e:#}"), usage, vanished)
                 })
             }
         };
-        let seconds = start.elapsed().as_secs_f64();
+        let mut result = attempt();
         let label = format!("job {i} {}", job.name);
-        // A write that failed while another run of the same job (a duplicate task on
-        // another node) completed it: its files are complete, the job is kept.
-        if let Err((message, false)) = &result {
+        // Another run of the same job (a duplicate task on another node) may have removed
+        // this run's temporary file as stale when it started, failing its rename: the job
+        // is kept when that run completed it, else written once more.
+        if let Err((message, false, vanished)) = &result {
             if let Some(row) = kept_row(job, &suffixes, &records[i], &dir) {
                 progress.finished(&format!("{label}: complete from another run ({message})"));
                 return (row, true);
             }
+            if *vanished {
+                result = attempt();
+            }
         }
+        let result = result.map_err(|(message, usage, _)| (message, usage));
+        let seconds = start.elapsed().as_secs_f64();
         let (row, usage) = match result {
             Ok(w) => {
                 progress.finished(&format!(
