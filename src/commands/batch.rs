@@ -133,12 +133,94 @@ pub fn run(args: BatchArgs) -> Result<()> {
     };
     let suffixes = suffixes(&formats)?;
     let options = ExportOptions::from_flags(args.export.flags())?;
-    let JobList {
-        jobs: mut all,
-        keys,
-        template,
-    } = job_list(&args, &manifest)?;
-    let total = all.len();
+
+    // The job list: base assignments, then each job's.
+    let mut sweeps = manifest.sweeps.clone();
+    for s in &args.sweep {
+        let s = Sweep::parse(s)?;
+        plan::check_key(&s.key, &s.values[0], &s.origin)?;
+        sweeps.push(s);
+    }
+    let mut base = manifest.set.clone();
+    for s in &args.field.set {
+        base.push(Assignment::parse_set(s)?);
+    }
+    for (flag, value) in args.field.flags() {
+        base.push(Assignment::flag(flag, value));
+    }
+    let preset = args.field.preset.clone().or(manifest.preset.clone());
+    let entries = if manifest.jobs.is_empty() {
+        vec![JobSpec {
+            preset: None,
+            assignments: Vec::new(),
+        }]
+    } else {
+        manifest.jobs.clone()
+    };
+    let specs = plan::product(&entries, &sweeps)?;
+    let mut keys: Vec<String> = Vec::new();
+    for k in entries
+        .iter()
+        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
+        .chain(sweeps.iter().map(|s| &s.key))
+    {
+        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
+            keys.push(k.clone());
+        }
+    }
+    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
+        Some(t) => NameTemplate::parse(t)?,
+        None => NameTemplate::default_for(&keys),
+    };
+    let total = specs.len();
+    let mut all: Vec<Job> = specs
+        .iter()
+        .enumerate()
+        .map(|(index, spec)| {
+            let mut assignments = base.clone();
+            assignments.extend(spec.assignments.iter().cloned());
+            let params =
+                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
+                    .map_err(|e| e.to_string());
+            // A key's value: the resolved one, or as typed when the job is bad.
+            let typed = |k: &str| {
+                spec.assignments
+                    .iter()
+                    .rev()
+                    .find(|a| canonical_key(&a.key) == canonical_key(k))
+                    .map(|a| a.value.clone())
+            };
+            // The parameters as a tree once, not once per key and name placeholder.
+            let tree = params.as_ref().ok().and_then(plan::params_tree);
+            let value = |k: &str| {
+                tree.as_ref()
+                    .and_then(|t| plan::value_text(t, k))
+                    .or_else(|| typed(k))
+                    .unwrap_or_default()
+            };
+            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
+            let name = template.render(index, total, value);
+            Job {
+                index,
+                name,
+                params,
+                values,
+            }
+        })
+        .collect();
+    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
+    for j in &all {
+        if let Some(first) = names.insert(&j.name, j.index) {
+            return Err(Error::Set {
+                origin: format!("--name {}", template.text),
+                message: format!(
+                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
+                    j.index, j.name
+                ),
+            }
+            .into());
+        }
+    }
 
     // ---- Schedulers, work items and the plan ----
     let (selection, task) = selection(&args, total)?;
@@ -505,110 +587,6 @@ pub fn run(args: BatchArgs) -> Result<()> {
         .into());
     }
     Ok(())
-}
-
-/// The jobs of a batch, in order, with the swept keys and the name template.
-struct JobList {
-    jobs: Vec<Job>,
-    keys: Vec<String>,
-    template: NameTemplate,
-}
-
-/// Every job of the batch from its definition (flags, sweeps, manifest): its number, name,
-/// parameters and swept values, whatever part of it this run does.
-fn job_list(args: &BatchArgs, manifest: &Manifest) -> Result<JobList> {
-    // The job list: base assignments, then each job's.
-    let mut sweeps = manifest.sweeps.clone();
-    for s in &args.sweep {
-        let s = Sweep::parse(s)?;
-        plan::check_key(&s.key, &s.values[0], &s.origin)?;
-        sweeps.push(s);
-    }
-    let mut base = manifest.set.clone();
-    for s in &args.field.set {
-        base.push(Assignment::parse_set(s)?);
-    }
-    for (flag, value) in args.field.flags() {
-        base.push(Assignment::flag(flag, value));
-    }
-    let preset = args.field.preset.clone().or(manifest.preset.clone());
-    let entries = if manifest.jobs.is_empty() {
-        vec![JobSpec {
-            preset: None,
-            assignments: Vec::new(),
-        }]
-    } else {
-        manifest.jobs.clone()
-    };
-    let specs = plan::product(&entries, &sweeps)?;
-    let mut keys: Vec<String> = Vec::new();
-    for k in entries
-        .iter()
-        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
-        .chain(sweeps.iter().map(|s| &s.key))
-    {
-        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
-            keys.push(k.clone());
-        }
-    }
-    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
-        Some(t) => NameTemplate::parse(t)?,
-        None => NameTemplate::default_for(&keys),
-    };
-    let total = specs.len();
-    let all: Vec<Job> = specs
-        .iter()
-        .enumerate()
-        .map(|(index, spec)| {
-            let mut assignments = base.clone();
-            assignments.extend(spec.assignments.iter().cloned());
-            let params =
-                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
-                    .map_err(|e| e.to_string());
-            // A key's value: the resolved one, or as typed when the job is bad.
-            let typed = |k: &str| {
-                spec.assignments
-                    .iter()
-                    .rev()
-                    .find(|a| canonical_key(&a.key) == canonical_key(k))
-                    .map(|a| a.value.clone())
-            };
-            // The parameters as a tree once, not once per key and name placeholder.
-            let tree = params.as_ref().ok().and_then(plan::params_tree);
-            let value = |k: &str| {
-                tree.as_ref()
-                    .and_then(|t| plan::value_text(t, k))
-                    .or_else(|| typed(k))
-                    .unwrap_or_default()
-            };
-            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
-            let name = template.render(index, total, value);
-            Job {
-                index,
-                name,
-                params,
-                values,
-            }
-        })
-        .collect();
-    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
-    for j in &all {
-        if let Some(first) = names.insert(&j.name, j.index) {
-            return Err(Error::Set {
-                origin: format!("--name {}", template.text),
-                message: format!(
-                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
-                    j.index, j.name
-                ),
-            }
-            .into());
-        }
-    }
-    Ok(JobList {
-        jobs: all,
-        keys,
-        template,
-    })
 }
 
 /// The index row of a job complete from an earlier run ([`complete_files`]).
