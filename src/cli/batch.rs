@@ -42,7 +42,7 @@ pub struct BatchArgs {
     #[arg(long, value_name = "N")]
     pub shard_count: Option<usize>,
     /// With --shard auto: the shard (from 0) of this submission's first task, for an array
-    /// split into several submissions (default 0)
+    /// split into several submissions
     #[arg(long, value_name = "M", default_value_t = 0)]
     pub shard_offset: usize,
     /// Run exactly the jobs A to B (both included), every STEP-th (default STEP 1); a
@@ -60,7 +60,8 @@ pub struct BatchArgs {
     /// Keep jobs whose files and sidecar are complete and match the job's parameters
     #[arg(long)]
     pub resume: bool,
-    /// Merge the shard indexes found in these folders into one index.csv and index.json
+    /// Merge the shard (and --items) indexes found in these folders into one index.csv and
+    /// index.json
     #[arg(long, value_name = "DIR", num_args = 1..)]
     pub merge_index: Vec<PathBuf>,
     /// How meshes, raw height maps and tiles are written
