@@ -475,6 +475,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 return (row, true);
             }
             if *vanished {
+                progress.println(&format!(
+                    "{label}: another run removed its temporary file ({message}); writing it again"
+                ));
                 result = attempt();
             }
         }
