@@ -344,6 +344,22 @@ fn the_plan_lists_every_job_and_no_split_changes_a_jobs_number_name_or_seed() {
         assert_eq!(r["seed"].to_string(), cells[2]);
         assert_eq!(r["params"]["seed"], cells[2]);
     }
+    // A manifest's jobs, each entry times the sweep, with their own seeds and presets.
+    let manifest = "name = \"{index}-{wind-speed}-{wind-dir}\"\n[sweep]\nwind-dir = [0, 45]\n\
+                    [[job]]\nwind-speed = 6\n[[job]]\npreset = \"moderate\"\nseed = 5\n";
+    std::fs::write(d.join("m.toml"), manifest).unwrap();
+    let out = ok_with(d, &["batch", "--manifest", "m.toml", "--plan"], &[]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "job,name,seed,wind-speed,wind-dir,error", "{out}");
+    assert_eq!(lines.len(), 5, "2 entries × 2 directions: {out}");
+    assert!(
+        lines[2].starts_with("1,1-6-45,") && lines[2].ends_with(",6,45,"),
+        "{out}"
+    );
+    assert!(
+        lines[4].starts_with("3,3-") && lines[4].contains(",5,"),
+        "entry 2 has seed 5: {out}"
+    );
     // A bad value is a row with its error, not a failure of the plan.
     let out = ok_with(d, &["batch", "--sweep", "wind-speed=5,-3", "--plan"], &[]);
     let bad = out.lines().nth(2).expect("two jobs");
