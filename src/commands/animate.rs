@@ -39,6 +39,10 @@ struct SequenceDoc {
     /// Frame k's files carry the number start_frame + k.
     #[serde(default)]
     start_frame: usize,
+    /// The axis convention of displacement EXRs: "y" (R, G, B = x, height, −y) or "z"
+    /// (x, y, height).
+    #[serde(default)]
+    up: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     loop_period_s: Option<f64>,
     /// File names: the pattern with {k} the file number (start_frame + k), 5 digits.
@@ -197,6 +201,10 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         fps,
         start_time_s: params.time_s,
         start_frame: start,
+        up: match options.up {
+            crate::export::options::UpAxis::Y => "y".into(),
+            crate::export::options::UpAxis::Z => "z".into(),
+        },
         loop_period_s: params.motion.loop_period_s,
         files: kinds
             .iter()

@@ -102,6 +102,8 @@ pub struct Describe<'a> {
     pub spec: &'a GridSpec,
     pub mapping: &'a HeightMapping,
     pub formats: &'a [Format],
+    /// Meshes take the field's exact spectral slopes for their normals.
+    pub exact_slopes: bool,
 }
 
 /// A writer that takes a field's rows in order, batch by batch, holding one batch in

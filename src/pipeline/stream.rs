@@ -252,6 +252,7 @@ pub fn generate(
             spec: &spec,
             mapping: &range,
             formats: &formats,
+            exact_slopes: false,
         };
         for o in &of_stem {
             doc.files.push(FileEntry {

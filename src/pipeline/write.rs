@@ -235,6 +235,7 @@ pub fn write_field(
             spec: &spec,
             mapping: &mapping,
             formats: &stem_formats,
+            exact_slopes: mesh_slopes.is_some(),
         };
         for o in outs.iter() {
             for f in &o.files {
