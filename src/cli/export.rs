@@ -5,7 +5,8 @@ use clap::Args;
 /// The export flags of `generate`, as typed; `commands::common::export_options` checks them.
 #[derive(Debug, Args, Clone, Default)]
 pub struct ExportArgs {
-    /// Up axis of .obj meshes: y (default; X = x, Y = height, Z = −y) or z (X = x, Y = y, Z = height)
+    /// Up axis of .obj meshes and .disp.exr vectors: y (default; X = x, Y = height, Z = −y)
+    /// or z (X = x, Y = y, Z = height)
     #[arg(long, value_name = "y|z")]
     pub up: Option<String>,
     /// Mesh vertices at every K-th sample (and the far edge); default 1

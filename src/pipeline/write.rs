@@ -277,7 +277,11 @@ pub fn write_field(
         slopes: mesh_slopes.as_ref(),
         about: &about,
     };
-    let has_png = formats.contains(&Format::Png16);
+    // A PNG through the 16-bit mapping (not one in Unreal's encoding).
+    let has_png = manager
+        .outputs
+        .iter()
+        .any(|o| o.format() == Format::Png16 && o.exporter.uses_mapping());
     manager.write_all(&field_out)?;
     let map_paths: Vec<PathBuf> = staged_maps.iter().map(|(s, _)| s.path.clone()).collect();
     for (staged, kind) in staged_maps {
