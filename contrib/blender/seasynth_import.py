@@ -59,6 +59,8 @@ def read_sequence(folder):
         "up": doc.get("up", "y") or "y",
         "disp": pattern,
         "foam": foam,
+        # seasynth writes A (foam) into disp.exr only for a choppy sea.
+        "alpha_foam": doc["params"].get("motion", {}).get("choppiness", 0.0) != 0.0,
     }
 
 
@@ -131,6 +133,8 @@ def foam_material(name, folder, s, disp_img):
     water = nodes["Principled BSDF"]
     water.inputs["Base Color"].default_value = (0.01, 0.05, 0.08, 1.0)
     water.inputs["Roughness"].default_value = 0.05
+    if not (s["foam"] or s["alpha_foam"]):
+        return mat  # no foam in the files: plain water
     foam = nodes.new("ShaderNodeBsdfDiffuse")
     foam.inputs["Color"].default_value = (0.9, 0.9, 0.9, 1.0)
     mix = nodes.new("ShaderNodeMixShader")

@@ -89,7 +89,11 @@ impl Exporter for Raw {
             let r16 = self
                 .r16
                 .then(|| super::r16_encoding(self.layout.engine, cx.mapping));
-            doc.raw = Some(self.layout.info(cx.spec, r16, has(Format::R32)));
+            let mut info = self.layout.info(cx.spec, r16, has(Format::R32));
+            if self.png && !has(Format::R16) && !has(Format::R32) {
+                info.layout = "16-bit grayscale PNG; row 0 is y = 0, column 0 is x = 0";
+            }
+            doc.raw = Some(info);
         }
     }
 
