@@ -11,8 +11,8 @@ use rustfft::num_complex::Complex;
 use super::HalfSpectrum;
 use crate::grid::{GridSpec, signed_index};
 
-/// Multiplies the amplitudes of `half` by e^{i(kx·sx + ky·sy)} with s = (offset[0]·dx,
-/// offset[1]·dy): its samples then sit at ((i + offset[0])·dx, (j + offset[1])·dy).
+/// Multiplies the amplitudes of `half` by e^{i(kx·sx + ky·sy)} with s = (ox·dx, oy·dy),
+/// `offset` = (ox, oy) in samples: its samples then sit at ((i + ox)·dx, (j + oy)·dy).
 pub fn shift_samples(half: &mut HalfSpectrum, spec: &GridSpec, offset: [f64; 2]) {
     let (nx, ny) = (half.nx, half.ny);
     let tau = std::f64::consts::TAU;
