@@ -230,3 +230,94 @@ fn blender_displaces_a_grid_by_the_exr_sequence_as_seasynths_own_meshes() {
         );
     }
 }
+
+/// Imports `file` with Blender's OBJ importer (`axes`: forward and up, or the defaults)
+/// and returns the world positions of its vertices.
+fn blender_obj_import(dir: &Path, file: &str, axes: Option<(&str, &str)>) -> Vec<[f64; 3]> {
+    let script = dir.join("obj_import.py");
+    std::fs::write(
+        &script,
+        r#"import bpy, sys
+path, out, forward, up = sys.argv[sys.argv.index("--") + 1:]
+for o in list(bpy.data.objects):
+    bpy.data.objects.remove(o)
+if forward == "default":
+    bpy.ops.wm.obj_import(filepath=path)
+else:
+    bpy.ops.wm.obj_import(filepath=path, forward_axis=forward, up_axis=up)
+with open(out, "w") as f:
+    for ob in bpy.context.scene.objects:
+        for v in ob.data.vertices:
+            w = ob.matrix_world @ v.co
+            f.write(f"{w.x!r} {w.y!r} {w.z!r}\n")
+"#,
+    )
+    .unwrap();
+    let (forward, up) = axes.unwrap_or(("default", "default"));
+    let out_file = format!("{file}.blender.txt");
+    let out = Command::new("blender")
+        .current_dir(dir)
+        .args(["-b", "--factory-startup", "--python"])
+        .arg(&script)
+        .args(["--", file, &out_file, forward, up])
+        .output()
+        .expect("blender runs");
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "blender failed:\n{log}");
+    std::fs::read_to_string(dir.join(&out_file))
+        .unwrap_or_else(|e| panic!("no vertices ({e}):\n{log}"))
+        .lines()
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|t| t.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+#[test]
+fn blender_imports_obj_meshes_with_x_y_and_height_on_its_own_axes() {
+    if !blender_present() {
+        eprintln!(
+            "note: blender is not on the PATH: the Blender OBJ import check is skipped (.ci/blender.sh installs it)"
+        );
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let sea = ["--method", "fft", "--size", "16", "--extent", "32", "-q"];
+    let mut a = vec!["generate"];
+    a.extend(sea);
+    a.extend(["--up", "z", "-o", "z.obj"]);
+    run_ok(d, &a);
+    let mut a = vec!["generate"];
+    a.extend(sea);
+    a.extend(["-o", "y.obj"]);
+    run_ok(d, &a);
+    // The field's (x, y, h) of every vertex, from the Z-up OBJ's own text.
+    let want = obj_vertices(&d.join("z.obj"));
+    let check = |got: &[[f64; 3]], what: &str| {
+        assert_eq!(got.len(), want.len(), "{what}");
+        for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (0..3).all(|c| (g[c] - w[c]).abs() < 1e-6),
+                "{what}, vertex {k}: Blender {g:?}, field {w:?}"
+            );
+        }
+    };
+    // `--up z` with Forward Y, Up Z; `--up y` with the importer's defaults (−Z, Y).
+    check(
+        &blender_obj_import(d, "z.obj", Some(("Y", "Z"))),
+        "--up z, Forward Y / Up Z",
+    );
+    check(
+        &blender_obj_import(d, "y.obj", None),
+        "--up y, default axes",
+    );
+    // `--up z` with the defaults stands on its edge: y becomes Blender's height.
+    let edge = blender_obj_import(d, "z.obj", None);
+    let top = edge.iter().map(|v| v[2]).fold(f64::MIN, f64::max);
+    assert!(
+        top > 29.0,
+        "a Z-up OBJ under the default axes reaches {top} m up"
+    );
+}
