@@ -231,3 +231,72 @@ fn preview_frames_and_generate_previews_are_rgb_images_of_the_default_view() {
         read(&dir.path().join("p/frame_00001.preview.png"))
     );
 }
+
+#[test]
+fn exr_sequences_start_at_frame_one_and_each_file_is_generate_at_its_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    run_ok(
+        d,
+        &args(&[
+            "--frames",
+            "3",
+            "--format",
+            "exr,disp.exr",
+            "--choppiness",
+            "0.5",
+            "--up",
+            "z",
+            "--exr-compression",
+            "zip",
+            "-o",
+            "seq",
+        ]),
+    );
+    let doc = json_file(&d.join("seq/sequence.json"));
+    assert_eq!(
+        (doc["start_frame"].as_u64(), doc["up"].as_str()),
+        (Some(1), Some("z"))
+    );
+    assert!(!d.join("seq/frame_00000.exr").exists());
+    // File number 3 is frame 2, t = 2/fps; its heights are generate's at that time.
+    let mut g: Vec<&str> = vec!["generate"];
+    g.extend(SEA);
+    g.extend([
+        "--choppiness",
+        "0.5",
+        "--time",
+        "0.2",
+        "-o",
+        "g.exr",
+        "-o",
+        "g.disp.exr",
+    ]);
+    g.extend(["--up", "z", "-q"]);
+    run_ok(d, &g);
+    let channels = |p: &str| seasynth::export::exr::read_channels(&d.join(p)).unwrap().2;
+    assert_eq!(channels("seq/frame_00003.exr"), channels("g.exr"));
+    assert_eq!(channels("seq/frame_00003.disp.exr"), channels("g.disp.exr"));
+    // --start-frame numbers the files from N; PNG sequences keep starting at 0.
+    run_ok(
+        d,
+        &args(&[
+            "--frames",
+            "2",
+            "--format",
+            "exr",
+            "--start-frame",
+            "101",
+            "-o",
+            "s",
+        ]),
+    );
+    assert!(d.join("s/frame_00101.exr").is_file() && d.join("s/frame_00102.exr").is_file());
+    run_ok(d, &args(&["--frames", "1", "-o", "p"]));
+    assert!(d.join("p/frame_00000.png").is_file());
+    run_rejected(
+        d,
+        &args(&["--frames", "1", "--format", "disp.png", "-o", "bad"]),
+        &["--format", "disp.png"],
+    );
+}

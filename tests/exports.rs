@@ -754,6 +754,202 @@ fn gdalinfo_reports_the_tiff_pixel_size_in_meters() {
     assert!(wkt.contains("metre"), "a frame in meters: {wkt}");
 }
 
+#[test]
+fn gdalinfo_places_texel_centre_samples_with_their_area_at_the_origin() {
+    let Ok(probe) = std::process::Command::new("gdalinfo")
+        .arg("--version")
+        .output()
+    else {
+        use std::io::Write;
+        let note = b"note: gdalinfo not found; the GDAL check is skipped (install gdal-bin)\n";
+        std::io::stderr().write_all(note).expect("stderr");
+        return;
+    };
+    assert!(probe.status.success(), "gdalinfo --version fails");
+    let dir = tempfile::tempdir().unwrap();
+    generate(
+        dir.path(),
+        &[
+            "--size",
+            "40x20",
+            "--extent",
+            "100x30",
+            "--sample-at",
+            "centers",
+            "-o",
+            "c.tif",
+        ],
+    );
+    let out = std::process::Command::new("gdalinfo")
+        .arg("-json")
+        .arg(dir.path().join("c.tif"))
+        .output()
+        .expect("gdalinfo runs");
+    let info: Value = serde_json::from_slice(&out.stdout).expect("gdalinfo -json prints JSON");
+    let gt: Vec<f64> = info["geoTransform"]
+        .as_array()
+        .unwrap_or_else(|| panic!("no geoTransform: {info:#}"))
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    // PixelIsArea: pixel (0, 0) starts at the origin, its centre (the sample) at (dx/2, dy/2).
+    assert_eq!(
+        (gt[0], gt[1], gt[3], gt[5]),
+        (0.0, 2.5, 0.0, -1.5),
+        "{gt:?}"
+    );
+    let area = info["metadata"][""]["AREA_OR_POINT"].as_str();
+    assert_eq!(area, Some("Area"), "{info:#}");
+    let side = json_file(&dir.path().join("c.json"));
+    assert_eq!(side["grid"]["sample_at"], "centers");
+    assert!(
+        side["geotiff"]["raster_type"]
+            .as_str()
+            .unwrap()
+            .starts_with("PixelIsArea")
+    );
+}
+
+#[test]
+fn engine_pngs_hold_the_r16_samples_of_the_engine_lattice() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for engine in ["unreal", "godot", "unity"] {
+        let (png, r16) = (format!("{engine}.png"), format!("{engine}.r16"));
+        generate(
+            d,
+            &[
+                "--method", "fft", "--size", "64", "--extent", "64", "--engine", engine, "-o",
+                &png, "-o", &r16,
+            ],
+        );
+        let raw: Vec<u16> = std::fs::read(d.join(&r16))
+            .unwrap()
+            .chunks(2)
+            .map(|b| u16::from_le_bytes([b[0], b[1]]))
+            .collect();
+        let decoder = png::Decoder::new(std::io::BufReader::new(
+            std::fs::File::open(d.join(&png)).unwrap(),
+        ));
+        let mut reader = decoder.read_info().unwrap();
+        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+        let frame = reader.next_frame(&mut buf).unwrap();
+        let side = if engine == "unreal" { 127 } else { 65 };
+        assert_eq!((frame.width, frame.height), (side, side), "{engine}");
+        let px: Vec<u16> = buf[..frame.buffer_size()]
+            .chunks(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .collect();
+        assert_eq!(px, raw, "{engine}: the PNG holds the .r16's samples");
+        let doc = json_file(&d.join(format!("{engine}.json")));
+        if engine == "godot" {
+            let g = &doc["raw"]["godot"];
+            let range = [
+                doc["mapping"]["min_m"].as_f64(),
+                doc["mapping"]["max_m"].as_f64(),
+            ];
+            assert_eq!(
+                [
+                    g["height_range_m"][0].as_f64(),
+                    g["height_range_m"][1].as_f64()
+                ],
+                range,
+                "{doc:#}"
+            );
+            assert_eq!(g["resolution"][0], 65);
+        }
+        if engine == "unreal" {
+            assert!(doc["raw"]["unreal"]["z_scale"].as_f64().unwrap() > 0.0);
+            // 32768 is 0 m: the mean of a sea sits near it.
+            let mean = px.iter().map(|&v| v as f64).sum::<f64>() / px.len() as f64;
+            assert!((mean - 32768.0).abs() < 2000.0, "mean {mean}");
+        }
+    }
+}
+
+#[test]
+fn exr_maps_carry_the_displacement_in_the_up_convention_and_foam_in_alpha() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base = [
+        "--method",
+        "fft",
+        "--size",
+        "32",
+        "--extent",
+        "64",
+        "--wind-speed",
+        "12",
+        "--choppiness",
+        "1",
+        "--foam-threshold",
+        "1",
+    ];
+    let mut y = base.to_vec();
+    y.extend(["-o", "y.disp.exr", "-o", "y.foam.exr", "-o", "y.foam.png"]);
+    generate(d, &y);
+    let mut z = base.to_vec();
+    z.extend(["--up", "z", "--exr-compression", "piz", "-o", "z.disp.exr"]);
+    generate(d, &z);
+    let mut zh = base.to_vec();
+    zh.extend([
+        "--up",
+        "z",
+        "--exr-half",
+        "--exr-compression",
+        "zip",
+        "-o",
+        "h.disp.exr",
+    ]);
+    generate(d, &zh);
+    type Channels = Vec<(String, Vec<f32>)>;
+    let read = |f: &str| exr::read_channels(&d.join(f)).unwrap().2;
+    let (ych, zch, hch) = (read("y.disp.exr"), read("z.disp.exr"), read("h.disp.exr"));
+    let names = |c: &Channels| c.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&ych), ["A", "B", "G", "R"]);
+    let get = |c: &Channels, n: &str| c.iter().find(|(m, _)| m == n).unwrap().1.clone();
+    let (zr, zg, zb) = (get(&zch, "R"), get(&zch, "G"), get(&zch, "B"));
+    assert!(zr.iter().any(|&v| v != 0.0), "a choppy sea moves sideways");
+    for k in 0..32 * 32 {
+        // --up y: (x, height, −y); --up z: (x, y, height); half floats round each.
+        assert_eq!(
+            [get(&ych, "R")[k], get(&ych, "G")[k], get(&ych, "B")[k]],
+            [zr[k], zb[k], -zg[k]],
+            "sample {k}"
+        );
+        assert_eq!(
+            [get(&hch, "R")[k], get(&hch, "G")[k], get(&hch, "B")[k]],
+            [exr_half(zr[k]), exr_half(zg[k]), exr_half(zb[k])],
+            "sample {k}"
+        );
+    }
+    // A = the foam coverage, as in the foam maps (16-bit in the PNG).
+    let a = get(&ych, "A");
+    assert_eq!(a, read("y.foam.exr")[0].1);
+    assert!(a.iter().any(|&f| f > 0.0), "foam where J < 1");
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(d.join("y.foam.png")).unwrap(),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let frame = reader.next_frame(&mut buf).unwrap();
+    let png: Vec<u16> = buf[..frame.buffer_size()]
+        .chunks(2)
+        .map(|b| u16::from_be_bytes([b[0], b[1]]))
+        .collect();
+    for (k, (&f, &p)) in a.iter().zip(&png).enumerate() {
+        assert!(
+            (f as f64 * 65535.0 - p as f64).abs() <= 0.5 + 1e-3,
+            "sample {k}: {f} vs {p}"
+        );
+    }
+}
+
+/// `v` rounded to a half float and back.
+fn exr_half(v: f32) -> f32 {
+    ::exr::prelude::f16::from_f32(v).to_f32()
+}
+
 /// `generate ARGS` in an empty folder: rejected with one line naming each fragment, and
 /// nothing left behind.
 fn assert_rejected(args: &[&str], fragments: &[&str]) {
@@ -780,12 +976,28 @@ fn bad_export_flags_are_rejected_in_one_line_before_any_file_is_written() {
         &["--tiles 40x1", "31 cells along x"],
     );
     assert_rejected(
-        &["--size", "32", "--engine", "unity", "-o", "a.png"],
-        &["--engine", ".r16 and .r32"],
+        &["--size", "32", "--engine", "unity", "-o", "a.tif"],
+        &["--engine", ".r16, .r32 and .png"],
     );
     assert_rejected(
-        &["--size", "32", "--engine", "godot", "-o", "a.r16"],
-        &["--engine", "unity or unreal", "(got godot)"],
+        &["--size", "32", "--engine", "cryengine", "-o", "a.r16"],
+        &["--engine", "unity or unreal or godot", "(got cryengine)"],
+    );
+    assert_rejected(
+        &["--size", "32", "--exr-compression", "rle", "-o", "a.exr"],
+        &["--exr-compression", "none or zip or piz", "(got rle)"],
+    );
+    assert_rejected(
+        &["--size", "32", "--exr-half", "-o", "a.tif"],
+        &["--exr-half", "applies only to .exr"],
+    );
+    assert_rejected(
+        &["--size", "32", "--up", "z", "-o", "a.disp.tif"],
+        &["--up", ".obj, .glb and .disp.exr"],
+    );
+    assert_rejected(
+        &["--size", "32", "--sample-at", "middle", "-o", "a.tif"],
+        &["--sample-at", "middle", "corners", "centers"],
     );
     assert_rejected(
         &[

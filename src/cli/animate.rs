@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::FieldArgs;
+use super::{ExrArgs, FieldArgs};
 
 #[derive(Debug, Args)]
 pub struct AnimateArgs {
@@ -16,10 +16,21 @@ pub struct AnimateArgs {
     /// Output folder (created if missing)
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub dir: PathBuf,
-    /// Files per frame: png (16-bit height), tif (float height), normal, foam, jacobian, disp,
+    /// Files per frame: png (16-bit height), tif or exr (float height), normal, foam,
+    /// jacobian, disp (maps; disp.exr, normal.exr, foam.exr, jacobian.exr as float EXR),
     /// preview (a rendered view)
     #[arg(long, value_delimiter = ',', default_value = "png")]
     pub format: Vec<String>,
+    /// Number in the first frame's file names; frame files are numbered on from it
+    /// (default: 1 when an EXR is written, as image-sequence readers expect, else 0)
+    #[arg(long, value_name = "N")]
+    pub start_frame: Option<usize>,
+    /// Axis convention of disp.exr: y (default; R, G, B = x, height, −y) or z (x, y, height)
+    #[arg(long, value_name = "y|z")]
+    pub up: Option<String>,
+    /// How .exr frames are written
+    #[command(flatten)]
+    pub exr: ExrArgs,
     /// Skip frames whose files are all there (files appear only when complete)
     #[arg(long)]
     pub resume: bool,

@@ -5,7 +5,8 @@ use clap::Args;
 /// The export flags of `generate`, as typed; `commands::common::export_options` checks them.
 #[derive(Debug, Args, Clone, Default)]
 pub struct ExportArgs {
-    /// Up axis of .obj meshes: y (default; X = x, Y = height, Z = −y) or z (X = x, Y = y, Z = height)
+    /// Up axis of .obj meshes and .disp.exr vectors: y (default; X = x, Y = height, Z = −y)
+    /// or z (X = x, Y = y, Z = height)
     #[arg(long, value_name = "y|z")]
     pub up: Option<String>,
     /// Mesh vertices at every K-th sample (and the far edge); default 1
@@ -24,13 +25,41 @@ pub struct ExportArgs {
     /// with their wrap-around neighbours in the tile index
     #[arg(long)]
     pub periodic_tiles: bool,
-    /// Resample .r16/.r32 to a legal terrain size: unity (2ⁿ+1) or unreal (Unreal's
-    /// recommended sizes; .r16 in Unreal's encoding with a Z scale)
-    #[arg(long, value_name = "unity|unreal")]
+    /// Resample .r16/.r32/.png to a legal terrain size: unity (2ⁿ+1), unreal (Unreal's
+    /// recommended sizes; 16-bit values in Unreal's encoding with a Z scale) or godot
+    /// (2ⁿ+1, with the height range to enter on import); default none
+    #[arg(long, value_name = "unity|unreal|godot")]
     pub engine: Option<String>,
     /// Byte order of .r16/.r32: little (default) or big
     #[arg(long, value_name = "little|big")]
     pub byte_order: Option<String>,
+    /// How .exr outputs are written
+    #[command(flatten)]
+    pub exr: ExrArgs,
+}
+
+/// The EXR flags, shared by `generate` and `animate`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct ExrArgs {
+    /// Compression of .exr outputs: none (default), zip or piz (both lossless)
+    #[arg(long, value_name = "none|zip|piz")]
+    pub exr_compression: Option<String>,
+    /// Write .exr outputs as 16-bit half floats (default: 32-bit floats)
+    #[arg(long)]
+    pub exr_half: bool,
+}
+
+impl ExrArgs {
+    /// The flags given, as (flag, text) (`--exr-half` with an empty text).
+    pub fn flags(&self) -> Vec<(&'static str, &str)> {
+        [
+            ("--exr-compression", self.exr_compression.as_deref()),
+            ("--exr-half", self.exr_half.then_some("")),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.map(|v| (k, v)))
+        .collect()
+    }
 }
 
 impl ExportArgs {
@@ -49,6 +78,7 @@ impl ExportArgs {
         ]
         .into_iter()
         .filter_map(|(k, v)| v.map(|v| (k, v)))
+        .chain(self.exr.flags())
         .collect()
     }
 }

@@ -15,7 +15,7 @@ mod spectrum;
 pub use analyze::AnalyzeArgs;
 pub use animate::AnimateArgs;
 pub use batch::BatchArgs;
-pub use export::ExportArgs;
+pub use export::{ExportArgs, ExrArgs};
 pub use spectrum::SpectrumArgs;
 
 #[derive(Debug, Parser)]
@@ -121,6 +121,10 @@ pub struct FieldArgs {
     /// Filtered-noise motion: dispersion (default), translate, hot-air
     #[arg(long, value_name = "MODE")]
     pub phase_mode: Option<String>,
+    /// Where samples sit: corners (default; sample (i, j) at (i·dx, j·dy)) or centers
+    /// (((i + ½)·dx, (j + ½)·dy), where image-based displacement samples a texture)
+    #[arg(long, value_name = "corners|centers")]
+    pub sample_at: Option<String>,
     /// Run even when the estimated peak memory exceeds the available memory
     #[arg(long)]
     pub force: bool,
@@ -150,6 +154,7 @@ impl FieldArgs {
             ("foam-threshold", &self.foam_threshold),
             ("fps", &self.fps),
             ("phase-mode", &self.phase_mode),
+            ("sample-at", &self.sample_at),
         ]
         .into_iter()
         .filter_map(|(k, v)| v.as_deref().map(|v| (k, v)))
@@ -259,6 +264,10 @@ pub struct BenchArgs {
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Where samples sit: corners (default; sample (i, j) at (i·dx, j·dy)) or centers
+    /// (((i + ½)·dx, (j + ½)·dy), where image-based displacement samples a texture)
+    #[arg(long, value_name = "corners|centers")]
+    pub sample_at: Option<String>,
     /// Run even when the estimated peak memory exceeds the available memory
     #[arg(long)]
     pub force: bool,

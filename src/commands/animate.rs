@@ -2,6 +2,9 @@
 //! t = time + k/fps, with one 16-bit height mapping for every frame, a sidecar for the
 //! sequence and `--resume`.
 //!
+//! Frame files are numbered from `--start-frame` (default 1 when an EXR is written, as
+//! image-sequence readers expect, else 0): file number F holds frame k = F − start.
+//!
 //! Frame k is bit for bit the field of `generate --time t_k` with the same parameters:
 //! the random draws are made once and kept (`field::Synthesizer`), and each frame redoes
 //! only the time-dependent sines and cosines and the transforms. Frames are computed a few
@@ -17,8 +20,9 @@ use serde::{Deserialize, Serialize};
 use crate::cli::AnimateArgs;
 use crate::config::Params;
 use crate::error::{Error, ParamError};
-use crate::export::maps::{self, MapContext, MapKind};
-use crate::export::{HeightMapping, Staged, png16, tiff32};
+use crate::export::maps::{self, MapContext, MapEncoding, MapKind};
+use crate::export::options::ExportOptions;
+use crate::export::{Format, HeightMapping, Staged, exr, png16, tiff32};
 use crate::field::{Synthesis, Synthesizer};
 use crate::pipeline::jobs::{self, FileKind as Kind, Progress};
 use crate::pipeline::memory::keep_freed_memory;
@@ -32,9 +36,16 @@ struct SequenceDoc {
     fps: f64,
     /// Frame k shows t = start_time_s + k / fps.
     start_time_s: f64,
+    /// Frame k's files carry the number start_frame + k.
+    #[serde(default)]
+    start_frame: usize,
+    /// The axis convention of displacement EXRs: "y" (R, G, B = x, height, −y) or "z"
+    /// (x, y, height).
+    #[serde(default)]
+    up: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     loop_period_s: Option<f64>,
-    /// File names: the pattern with {k} the frame number, 5 digits.
+    /// File names: the pattern with {k} the file number (start_frame + k), 5 digits.
     files: Vec<String>,
     /// The one 16-bit mapping of every frame's height PNG.
     mapping_min_m: f64,
@@ -43,8 +54,9 @@ struct SequenceDoc {
     params: Params,
 }
 
-fn frame_path(dir: &Path, k: usize, kind: Kind) -> PathBuf {
-    dir.join(format!("frame_{k:05}.{}", kind.suffix()))
+/// The file of number `number` (the first frame's is `--start-frame`).
+fn frame_path(dir: &Path, number: usize, kind: Kind) -> PathBuf {
+    dir.join(format!("frame_{number:05}.{}", kind.suffix()))
 }
 
 /// Runs `seasynth animate`.
@@ -67,13 +79,39 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             kinds.push(k);
         }
     }
-    let map_kinds: Vec<MapKind> = kinds
+    let map_kinds: Vec<(MapKind, MapEncoding)> = kinds
         .iter()
         .filter_map(|k| match k {
-            Kind::Map(m) => Some(*m),
+            Kind::Map(m, e) => Some((*m, *e)),
             _ => None,
         })
         .collect();
+    let mut flags = args.exr.flags();
+    if let Some(up) = args.up.as_deref() {
+        flags.push(("--up", up));
+    }
+    let options = ExportOptions::from_flags(flags)?;
+    let heights: Vec<Format> = kinds
+        .iter()
+        .filter_map(|k| match k {
+            Kind::Png => Some(Format::Png16),
+            Kind::Tif => Some(Format::Tiff32),
+            Kind::Exr => Some(Format::Exr),
+            _ => None,
+        })
+        .collect();
+    options.check_outputs(&heights, &map_kinds, true)?;
+    let start = args
+        .start_frame
+        .unwrap_or(usize::from(kinds.iter().any(|k| k.is_exr())));
+    if start > 1_000_000_000 {
+        return Err(Error::Param(ParamError {
+            name: "--start-frame".into(),
+            allowed: "0 … 1000000000".into(),
+            got: start.to_string(),
+        })
+        .into());
+    }
     let mut extras = maps::extras_for(&map_kinds);
     extras.slopes |= kinds.contains(&Kind::Preview);
     // Frames run `jobs` at a time, as many as the memory estimate allows; the draws are
@@ -103,11 +141,11 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     };
     if earlier
         .as_ref()
-        .is_some_and(|e| e.params != params || e.frames != args.frames)
+        .is_some_and(|e| e.params != params || e.frames != args.frames || e.start_frame != start)
     {
         return Err(Error::Output {
             path: side_path.clone(),
-            message: "holds another sequence (other parameters or frame count): remove the folder or drop --resume".into(),
+            message: "holds another sequence (other parameters, frame count or start frame): remove the folder or drop --resume".into(),
         }
         .into());
     }
@@ -162,6 +200,11 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         frames: args.frames,
         fps,
         start_time_s: params.time_s,
+        start_frame: start,
+        up: match options.up {
+            crate::export::options::UpAxis::Y => "y".into(),
+            crate::export::options::UpAxis::Z => "z".into(),
+        },
         loop_period_s: params.motion.loop_period_s,
         files: kinds
             .iter()
@@ -178,7 +221,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             !args.resume
                 || !kinds
                     .iter()
-                    .all(|&kind| frame_path(&args.dir, k, kind).is_file())
+                    .all(|&kind| frame_path(&args.dir, start + k, kind).is_file())
         })
         .collect();
     let bar = Progress::new(todo.len(), "frames", quiet, false);
@@ -187,7 +230,10 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         // Stage the frame's files first: a bad path fails before the work.
         let mut staged = Vec::new();
         for &kind in &kinds {
-            staged.push((kind, Staged::create(&frame_path(&args.dir, k, kind))?));
+            staged.push((
+                kind,
+                Staged::create(&frame_path(&args.dir, start + k, kind))?,
+            ));
         }
         let syn: Synthesis = synth.frame(time_of(k));
         crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
@@ -195,20 +241,23 @@ pub fn run(args: AnimateArgs) -> Result<()> {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
                 Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
+                Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr))?,
                 Kind::Preview => {
                     let img = crate::pipeline::preview::preview_of(cx_params, &syn)?;
                     crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
                 }
-                Kind::Map(m) => {
+                Kind::Map(m, e) => {
                     let cx = MapContext {
                         params: cx_params,
                         synthesis: &syn,
+                        up: options.up,
+                        exr: options.exr,
                     };
-                    maps::write_map(m, st, &cx)?
+                    maps::write_map(m, e, st, &cx)?
                 }
             }
         }
-        bar.finished(&format!("frame {k}"));
+        bar.finished(&format!("frame {}", start + k));
         Ok(())
     };
     let results = jobs::run_pool(todo.len(), jobs, |i| write_frame(todo[i]));

@@ -129,6 +129,7 @@ fn bench_params(n: usize) -> Params {
         grid: crate::config::GridParams {
             size: crate::config::Size2([n, n]),
             extent_m: crate::config::Extent2([n as f64, n as f64]),
+            ..Default::default()
         },
         ..Params::default()
     }
@@ -441,6 +442,7 @@ fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
             grid: crate::config::GridParams {
                 size: crate::config::Size2([n, n]),
                 extent_m: crate::config::Extent2([n as f64, n as f64]),
+                ..Default::default()
             },
             ..Params::default()
         };

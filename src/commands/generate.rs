@@ -41,7 +41,7 @@ pub fn run(args: GenerateArgs) -> Result<()> {
     };
     // A trochoid field written only to PNG and TIFF (no maps) is streamed: it may exceed
     // memory.
-    let written = if crate::pipeline::stream::applies(&params, &paths) {
+    let written = if crate::pipeline::stream::applies(&params, &paths) && options.engine.is_none() {
         let formats = paths
             .iter()
             .map(|p| Format::from_path(p))
@@ -74,6 +74,9 @@ pub fn run(args: GenerateArgs) -> Result<()> {
         );
         for p in &written.files {
             eprintln!("wrote {}", p.display());
+        }
+        for note in &written.import_notes {
+            eprintln!("import: {note}");
         }
         if written.has_png {
             eprintln!(

@@ -33,6 +33,7 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("foam-threshold", "motion.foam_threshold"),
     ("fps", "motion.fps"),
     ("phase-mode", "motion.phase_mode"),
+    ("sample-at", "grid.sample_at"),
 ];
 
 /// The preset key a user's key stands for.

@@ -173,6 +173,43 @@ pub struct GridParams {
     pub size: Size2,
     /// Extent [Lx, Ly] in meters; FFT fields repeat with this period.
     pub extent_m: Extent2,
+    /// Where sample (i, j) sits: at the corner (i·dx, j·dy) (default) or at the texel
+    /// centre ((i + ½)·dx, (j + ½)·dy). Left out of files when at its default.
+    #[serde(skip_serializing_if = "SampleAt::is_corners")]
+    pub sample_at: SampleAt,
+}
+
+/// Where the samples of a grid sit (`--sample-at`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SampleAt {
+    /// Sample (i, j) at (i·dx, j·dy): texel corners.
+    #[default]
+    Corners,
+    /// Sample (i, j) at ((i + ½)·dx, (j + ½)·dy): texel centres, where image-based
+    /// displacement samples a texture.
+    Centers,
+}
+
+impl SampleAt {
+    pub fn is_corners(&self) -> bool {
+        *self == SampleAt::Corners
+    }
+
+    /// The offset of the samples from the corners, in samples (0 or ½).
+    pub fn offset(&self) -> f64 {
+        match self {
+            SampleAt::Corners => 0.0,
+            SampleAt::Centers => 0.5,
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            SampleAt::Corners => "corners",
+            SampleAt::Centers => "centers",
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -350,6 +387,7 @@ impl Default for GridParams {
         Self {
             size: Size2([512, 512]),
             extent_m: Extent2([512.0, 512.0]),
+            sample_at: SampleAt::Corners,
         }
     }
 }

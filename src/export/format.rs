@@ -1,12 +1,13 @@
 //! The one table from file names to what is written: a height format by the extension
 //! (`NAME.png`, `NAME.tif`, …), or a map of the wave state or a preview by an inner
-//! extension (`NAME.normal.png`, `NAME.disp.tif`, `NAME.preview.png`, …).
+//! extension (`NAME.normal.png`, `NAME.disp.tif`, `NAME.preview.png`, …); every map is
+//! also written as float EXR (`NAME.disp.exr`, `NAME.normal.exr`, …).
 
 use std::path::Path;
 
 use serde::Serialize;
 
-use super::maps::MapKind;
+use super::maps::{MapEncoding, MapKind};
 use crate::error::{Error, Result};
 
 /// Output formats of the height, chosen by file extension.
@@ -17,7 +18,7 @@ pub enum Format {
     Png16,
     /// `.tif`, `.tiff`: 32-bit float, one channel, meters, GeoTIFF spacing.
     Tiff32,
-    /// `.exr`: OpenEXR, one 32-bit float channel `Y`, meters.
+    /// `.exr`: OpenEXR, one float channel `Y`, meters.
     Exr,
     /// `.obj`: triangle mesh with normals and texture coordinates, meters.
     Obj,
@@ -48,15 +49,15 @@ pub const EXTENSIONS: &[(&str, Format)] = &[
 pub enum OutputKind {
     /// The height field in a format.
     Height(Format),
-    /// A map of the wave state.
-    Map(MapKind),
+    /// A map of the wave state, in its usual image format or as EXR.
+    Map(MapKind, MapEncoding),
     /// A shaded perspective view (8-bit RGB PNG).
     Preview,
 }
 
 /// An inner extension (`NAME.KIND.ext`): its kind, the outer extensions it is written as
-/// (the first named in errors), and whether another outer extension is an error (maps) or
-/// leaves the name to the height formats (previews).
+/// (the first named in errors; `exr` writes a map as float EXR), and whether another outer
+/// extension is an error (maps) or leaves the name to the height formats (previews).
 struct Inner {
     name: &'static str,
     outer: &'static [&'static str],
@@ -67,26 +68,26 @@ struct Inner {
 const INNER: &[Inner] = &[
     Inner {
         name: "normal",
-        outer: &["png"],
-        kind: OutputKind::Map(MapKind::Normal),
+        outer: &["png", "exr"],
+        kind: OutputKind::Map(MapKind::Normal, MapEncoding::Image),
         strict: true,
     },
     Inner {
         name: "foam",
-        outer: &["png"],
-        kind: OutputKind::Map(MapKind::Foam),
+        outer: &["png", "exr"],
+        kind: OutputKind::Map(MapKind::Foam, MapEncoding::Image),
         strict: true,
     },
     Inner {
         name: "jacobian",
-        outer: &["tif", "tiff"],
-        kind: OutputKind::Map(MapKind::Jacobian),
+        outer: &["tif", "tiff", "exr"],
+        kind: OutputKind::Map(MapKind::Jacobian, MapEncoding::Image),
         strict: true,
     },
     Inner {
         name: "disp",
-        outer: &["tif", "tiff"],
-        kind: OutputKind::Map(MapKind::Displacement),
+        outer: &["tif", "tiff", "exr"],
+        kind: OutputKind::Map(MapKind::Displacement, MapEncoding::Image),
         strict: true,
     },
     Inner {
@@ -115,6 +116,13 @@ impl OutputKind {
     pub fn suffix(&self) -> String {
         match self {
             OutputKind::Height(f) => f.extension().to_string(),
+            OutputKind::Map(kind, MapEncoding::Exr) => {
+                let i = INNER
+                    .iter()
+                    .find(|i| i.kind == OutputKind::Map(*kind, MapEncoding::Image))
+                    .expect("every map is in the table");
+                format!("{}.exr", i.name)
+            }
             other => {
                 let i = INNER
                     .iter()
@@ -142,7 +150,10 @@ pub(crate) fn inner_kind(path: &Path) -> std::result::Result<Option<OutputKind>,
         return Ok(None);
     };
     if i.outer.contains(&ext) {
-        Ok(Some(i.kind))
+        Ok(Some(match i.kind {
+            OutputKind::Map(kind, _) if ext == "exr" => OutputKind::Map(kind, MapEncoding::Exr),
+            other => other,
+        }))
     } else if i.strict {
         let (n, e) = (i.name, i.outer[0]);
         Err(format!(
@@ -214,7 +225,7 @@ impl MapKind {
     /// those of the one table in this module.
     pub fn from_path(path: &std::path::Path) -> Result<Option<MapKind>, String> {
         Ok(match inner_kind(path)? {
-            Some(OutputKind::Map(kind)) => Some(kind),
+            Some(OutputKind::Map(kind, _)) => Some(kind),
             _ => None,
         })
     }
@@ -228,8 +239,12 @@ mod tests {
     fn one_table_names_heights_maps_and_previews() {
         let kind = |p: &str| OutputKind::of_path(Path::new(p)).unwrap();
         assert_eq!(kind("a/x.PNG"), OutputKind::Height(Format::Png16));
-        assert_eq!(kind("x.normal.png"), OutputKind::Map(MapKind::Normal));
-        assert_eq!(kind("x.DISP.tiff"), OutputKind::Map(MapKind::Displacement));
+        let image = |k| OutputKind::Map(k, MapEncoding::Image);
+        let exr = |k| OutputKind::Map(k, MapEncoding::Exr);
+        assert_eq!(kind("x.normal.png"), image(MapKind::Normal));
+        assert_eq!(kind("x.DISP.tiff"), image(MapKind::Displacement));
+        assert_eq!(kind("x.disp.exr"), exr(MapKind::Displacement));
+        assert_eq!(kind("x.exr"), OutputKind::Height(Format::Exr));
         assert_eq!(kind("x.preview.png"), OutputKind::Preview);
         assert_eq!(kind("x.preview.tif"), OutputKind::Height(Format::Tiff32));
         assert_eq!(kind("normal.png"), OutputKind::Height(Format::Png16));
@@ -239,8 +254,12 @@ mod tests {
             .to_string();
         assert!(e.contains(".foam.png"), "{e}");
         for (k, s) in [
-            (OutputKind::Map(MapKind::Normal), "normal.png"),
-            (OutputKind::Map(MapKind::Jacobian), "jacobian.tif"),
+            (image(MapKind::Normal), "normal.png"),
+            (image(MapKind::Jacobian), "jacobian.tif"),
+            (exr(MapKind::Foam), "foam.exr"),
+            (exr(MapKind::Normal), "normal.exr"),
+            (exr(MapKind::Jacobian), "jacobian.exr"),
+            (exr(MapKind::Displacement), "disp.exr"),
             (OutputKind::Preview, "preview.png"),
             (OutputKind::Height(Format::Tiff32), "tif"),
             (OutputKind::Height(Format::R16), "r16"),

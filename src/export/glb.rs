@@ -50,8 +50,8 @@ impl Exporter for Glb {
         write_tile(out, &mesh, &self.tiles[part], name)
     }
 
-    fn describe(&self, doc: &mut Sidecar, _cx: &Describe) {
-        doc.mesh = Some(self.layout.info());
+    fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
+        doc.mesh = Some(self.layout.info(cx.exact_slopes));
     }
 
     fn mesh_layout(&self) -> Option<&MeshLayout> {

@@ -9,6 +9,10 @@
 //! | `NAME.foam.png` | 16-bit gray foam coverage: round(65535·clamp((T − J)/T, 0, 1)) with T the foam threshold: 0 where J ≥ T, full where the surface folds (J ≤ 0) |
 //! | `NAME.jacobian.tif` | 32-bit float J (1: undisturbed, < 0: folded) |
 //! | `NAME.disp.tif` | 32-bit float RGB: (λDx, λDy, h) in meters, the vertex displacement of choppy waves |
+//!
+//! Each is also written as float EXR by the outer extension `.exr` (`NAME.disp.exr`, …):
+//! see [`super::exr`] for the channels. The displacement EXR is in the output's axis
+//! convention (`--up`), so that a host's vector displacement applies it as it is.
 
 use std::io::{Seek, Write};
 
@@ -26,28 +30,65 @@ pub enum MapKind {
     Displacement,
 }
 
+/// How a map is stored: its usual image (8-bit PNG normals, 16-bit PNG foam, float TIFF
+/// Jacobian and displacement) or float EXR.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MapEncoding {
+    Image,
+    Exr,
+}
+
 /// What a wave-state map needs besides the state.
 pub struct MapContext<'a> {
     pub params: &'a crate::config::Params,
     pub synthesis: &'a crate::field::Synthesis,
+    /// The axis convention of a displacement EXR.
+    pub up: super::options::UpAxis,
+    /// How EXR maps are written.
+    pub exr: super::exr::ExrOptions,
 }
 
-/// The derived fields the given maps need.
-pub fn extras_for(kinds: &[MapKind]) -> crate::field::dynamics::Extras {
+/// The derived fields the given maps need (a displacement EXR carries foam when the sea
+/// is choppy).
+pub fn extras_for(kinds: &[(MapKind, MapEncoding)]) -> crate::field::dynamics::Extras {
     let mut e = crate::field::dynamics::Extras::default();
     for k in kinds {
         match k {
-            MapKind::Normal => e.slopes = true,
-            MapKind::Foam | MapKind::Jacobian => e.jacobian = true,
-            MapKind::Displacement => e.displacement = true,
+            (MapKind::Normal, _) => e.slopes = true,
+            (MapKind::Foam | MapKind::Jacobian, _) => e.jacobian = true,
+            (MapKind::Displacement, enc) => {
+                e.displacement = true;
+                e.jacobian |= *enc == MapEncoding::Exr;
+            }
         }
     }
     e
 }
 
-/// Writes the map `kind` of a synthesis to `staged`.
+/// Foam coverage 0..1 from J and the threshold T: clamp((T − J)/T, 0, 1).
+pub fn foam_coverage(j: f32, threshold: f64) -> f32 {
+    ((threshold - j as f64) / threshold).clamp(0.0, 1.0) as f32
+}
+
+/// The channels of a displacement EXR: R, G, B = (λDx, h, −λDy) for `--up y`, (λDx, λDy,
+/// h) for `--up z`.
+pub fn displacement_channels(
+    up: super::options::UpAxis,
+    dx: &[f32],
+    dy: &[f32],
+    h: &[f32],
+) -> [Vec<f32>; 3] {
+    match up {
+        super::options::UpAxis::Y => [dx.to_vec(), h.to_vec(), dy.iter().map(|v| -v).collect()],
+        super::options::UpAxis::Z => [dx.to_vec(), dy.to_vec(), h.to_vec()],
+    }
+}
+
+/// Writes the map `kind` of a synthesis to `staged`, as its usual image or as EXR.
 pub fn write_map(
     kind: MapKind,
+    encoding: MapEncoding,
     staged: super::Staged,
     cx: &MapContext,
 ) -> crate::error::Result<()> {
@@ -58,6 +99,9 @@ pub fn write_map(
         path: staged.path.clone(),
         message: "the state has no such field".into(),
     };
+    if encoding == MapEncoding::Exr {
+        return write_map_exr(kind, staged, cx);
+    }
     match kind {
         MapKind::Normal => {
             let normals = surf.normals().ok_or_else(missing)?;
@@ -93,6 +137,76 @@ pub fn write_map(
             };
             let h = surf.undisplaced_height.as_deref().unwrap_or(&syn.grid.data);
             staged.write_with(|w| write_xyz_f32(w, &spec, dx, dy, h))
+        }
+    }
+}
+
+/// Writes the map `kind` as float EXR (channels in [`super::exr`]).
+fn write_map_exr(
+    kind: MapKind,
+    staged: super::Staged,
+    cx: &MapContext,
+) -> crate::error::Result<()> {
+    use super::exr::write_channels;
+    let syn = cx.synthesis;
+    let spec = syn.grid.spec;
+    let size = (spec.nx, spec.ny);
+    let surf = &syn.surface;
+    let missing = || crate::error::Error::Output {
+        path: staged.path.clone(),
+        message: "the state has no such field".into(),
+    };
+    let t = cx.params.motion.foam_threshold;
+    let jacobian = surf.jacobian.as_ref().map(|j| j.values(spec.len()));
+    match kind {
+        MapKind::Normal => {
+            let normals = surf.normals().ok_or_else(missing)?;
+            let c: Vec<Vec<f32>> = (0..3)
+                .map(|k| normals.iter().map(|n| n[k]).collect())
+                .collect();
+            let ch = [("R", &c[0][..]), ("G", &c[1][..]), ("B", &c[2][..])];
+            let note = "unit normal (nx, ny, nz): nx along +x, ny along +y (row index), nz up";
+            staged.write_with(|w| write_channels(w, size, &ch, cx.exr, note))
+        }
+        MapKind::Foam => {
+            let j = jacobian.ok_or_else(missing)?;
+            let f: Vec<f32> = j.iter().map(|&j| foam_coverage(j, t)).collect();
+            let note = "foam coverage 0..1 = clamp((T - J)/T, 0, 1)";
+            staged.write_with(|w| write_channels(w, size, &[("Y", &f)], cx.exr, note))
+        }
+        MapKind::Jacobian => {
+            let j = jacobian.ok_or_else(missing)?;
+            let note = "Jacobian J of the choppy displacement (1: undisturbed, < 0: folded)";
+            staged.write_with(|w| write_channels(w, size, &[("Y", &j)], cx.exr, note))
+        }
+        MapKind::Displacement => {
+            let zero;
+            let [dx, dy] = match surf.displacement.as_ref() {
+                Some(d) => [&d[0], &d[1]],
+                None => {
+                    zero = vec![0.0f32; spec.len()];
+                    [&zero, &zero]
+                }
+            };
+            let h = surf.undisplaced_height.as_deref().unwrap_or(&syn.grid.data);
+            let [r, g, b] = displacement_channels(cx.up, dx, dy, h);
+            // Foam only where the displacement can fold the surface.
+            let foam: Option<Vec<f32>> = jacobian
+                .filter(|_| cx.params.motion.choppiness != 0.0)
+                .map(|j| j.iter().map(|&j| foam_coverage(j, t)).collect());
+            let mut ch = vec![("R", &r[..]), ("G", &g[..]), ("B", &b[..])];
+            if let Some(f) = &foam {
+                ch.push(("A", &f[..]));
+            }
+            let note = match cx.up {
+                super::options::UpAxis::Y => {
+                    "displacement (R, G, B) = (x, height, -y) in meters, Y up; A = foam"
+                }
+                super::options::UpAxis::Z => {
+                    "displacement (R, G, B) = (x, y, height) in meters, Z up; A = foam"
+                }
+            };
+            staged.write_with(|w| write_channels(w, size, &ch, cx.exr, note))
         }
     }
 }

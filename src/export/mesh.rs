@@ -184,6 +184,9 @@ pub struct MeshLayout {
     pub uv: TileUv,
     pub placement: Placement,
     pub periodic: bool,
+    /// Offset of the samples from the grid corners, in samples: 0, or ½ for `--sample-at
+    /// centers` (vertices and UVs sit where the samples are).
+    pub offset: f64,
 }
 
 impl MeshLayout {
@@ -209,6 +212,7 @@ impl MeshLayout {
                 Placement::Global
             },
             periodic,
+            offset: options.sample_at.offset(),
         };
         let (vx, vy) = (layout.xs.len(), layout.ys.len());
         let tiles = match tiled {
@@ -275,8 +279,9 @@ impl Mesh<'_> {
             Placement::Global => (0, 0),
             Placement::Tile => (l.xs[tile.vx.0], l.ys[tile.vy.0]),
         };
-        let x = ((l.xs[vi] - ox) as f64 * self.grid.spec.dx_m()) as f32;
-        let y = ((l.ys[vj] - oy) as f64 * self.grid.spec.dy_m()) as f32;
+        // `offset` is 0 for samples at corners (then these are (xs − ox)·dx exactly).
+        let x = (((l.xs[vi] - ox) as f64 + l.offset) * self.grid.spec.dx_m()) as f32;
+        let y = (((l.ys[vj] - oy) as f64 + l.offset) * self.grid.spec.dy_m()) as f32;
         let h = (self.grid.data[self.sample(vi, vj)] as f64 * l.vertical_scale) as f32;
         match l.up {
             UpAxis::Y => [x, h, 0.0 - y],
@@ -331,7 +336,10 @@ impl Mesh<'_> {
         match l.uv {
             TileUv::Global => {
                 let s = &self.grid.spec;
-                (l.xs[vi] as f64 / s.nx as f64, l.ys[vj] as f64 / s.ny as f64)
+                (
+                    (l.xs[vi] as f64 + l.offset) / s.nx as f64,
+                    (l.ys[vj] as f64 + l.offset) / s.ny as f64,
+                )
             }
             TileUv::Tile => {
                 let frac = |v: &[usize], k: usize, (a, b): (usize, usize)| {
@@ -363,7 +371,9 @@ pub struct MeshInfo {
 }
 
 impl MeshLayout {
-    pub fn info(&self) -> MeshInfo {
+    /// The conventions of this layout; `exact_slopes`: the normals come from the field's
+    /// exact spectral slopes (else from central differences of its heights).
+    pub fn info(&self, exact_slopes: bool) -> MeshInfo {
         let (nx, ny) = (self.xs.len(), self.ys.len());
         MeshInfo {
             up: self.up,
@@ -381,7 +391,9 @@ impl MeshLayout {
             placement: self.placement,
             uv: self.uv,
             uv_convention: "u = x / Lx; glTF v = y / Ly, OBJ v = 1 - y / Ly (per tile with uv = tile)",
-            normals: if self.periodic {
+            normals: if exact_slopes {
+                "exact spectral slopes of the whole field (i kx h, i ky h in Fourier space)"
+            } else if self.periodic {
                 "central differences of the whole field, periodic wrap"
             } else {
                 "central differences of the whole field, one-sided at its edges"
@@ -405,6 +417,7 @@ mod tests {
             uv: TileUv::Global,
             placement: Placement::Global,
             periodic,
+            offset: 0.0,
         }
     }
 

@@ -102,6 +102,8 @@ pub struct Describe<'a> {
     pub spec: &'a GridSpec,
     pub mapping: &'a HeightMapping,
     pub formats: &'a [Format],
+    /// Meshes take the field's exact spectral slopes for their normals.
+    pub exact_slopes: bool,
 }
 
 /// A writer that takes a field's rows in order, batch by batch, holding one batch in
@@ -122,11 +124,12 @@ pub trait RowSink {
 }
 
 /// The exporter of a format written whole, without a layout (PNG, TIFF, EXR).
-fn image_exporter(format: Format) -> Option<Box<dyn Exporter>> {
+fn image_exporter(format: Format, options: &ExportOptions) -> Option<Box<dyn Exporter>> {
+    let (exr, area) = (options.exr, !options.sample_at.is_corners());
     match format {
         Format::Png16 => Some(Box::new(png16::Png16)),
-        Format::Tiff32 => Some(Box::new(tiff32::Tiff32)),
-        Format::Exr => Some(Box::new(exr::Exr)),
+        Format::Tiff32 => Some(Box::new(tiff32::Tiff32 { area })),
+        Format::Exr => Some(Box::new(exr::Exr { options: exr })),
         _ => None,
     }
 }
@@ -140,12 +143,22 @@ fn exporter(
     spec: &GridSpec,
     periodic: bool,
 ) -> Result<Box<dyn Exporter>> {
-    if let Some(e) = image_exporter(format) {
+    // A 16-bit PNG for an engine is a lattice of the engine's size, as a `.r16`.
+    let engine_png = format == Format::Png16 && options.engine.is_some();
+    if let Some(e) = image_exporter(format, options).filter(|_| !engine_png) {
         return Ok(e);
     }
-    let tiled = options.tiles.filter(|_| format.is_tiled());
+    let tiled = options.tiles.filter(|_| format.is_tiled() || engine_png);
     Ok(match format {
-        Format::Png16 | Format::Tiff32 | Format::Exr => unreachable!("written whole"),
+        Format::Png16 | Format::R16 | Format::R32 => {
+            let layout = RawLayout::new(spec, periodic, options.engine, tiled, options.byte_order)?;
+            Box::new(raw::Raw {
+                layout,
+                r16: format != Format::R32,
+                png: format == Format::Png16,
+            })
+        }
+        Format::Tiff32 | Format::Exr => unreachable!("written whole"),
         Format::Obj => {
             let (layout, tiles) = MeshLayout::plan(options, spec, periodic, options.up, tiled)?;
             Box::new(obj::Obj::new(layout, tiles, path))
@@ -155,20 +168,13 @@ fn exporter(
             let (layout, tiles) = MeshLayout::plan(options, spec, periodic, up, tiled)?;
             Box::new(glb::Glb { layout, tiles })
         }
-        Format::R16 | Format::R32 => {
-            let layout = RawLayout::new(spec, periodic, options.engine, tiled, options.byte_order)?;
-            Box::new(raw::Raw {
-                layout,
-                r16: format == Format::R16,
-            })
-        }
     })
 }
 
 impl Format {
     /// True when the format's writer also takes a field row by row ([`RowSink`]).
     pub fn streams(self) -> bool {
-        image_exporter(self).is_some_and(|e| e.row_sink().is_some())
+        image_exporter(self, &ExportOptions::default()).is_some_and(|e| e.row_sink().is_some())
     }
 }
 
@@ -247,7 +253,13 @@ pub struct Output {
 impl Output {
     /// An output of the field's samples as they are (no tiles, default options).
     pub fn prepare(path: &Path) -> Result<Self> {
-        let exporter = image_exporter(Format::from_path(path)?).ok_or_else(|| Error::Output {
+        Self::prepare_with(path, &ExportOptions::default())
+    }
+
+    /// [`prepare`](Self::prepare) with `options` (the EXR options, where samples sit).
+    pub fn prepare_with(path: &Path, options: &ExportOptions) -> Result<Self> {
+        let format = Format::from_path(path)?;
+        let exporter = image_exporter(format, options).ok_or_else(|| Error::Output {
             path: path.to_path_buf(),
             message: "needs the export options: use Output::plan".into(),
         })?;
@@ -268,7 +280,8 @@ impl Output {
     ) -> Result<Self> {
         let format = Format::from_path(path)?;
         let exporter = exporter(format, path, options, spec, periodic)?;
-        let tiled = options.tiles.is_some() && format.is_tiled();
+        let tiled = options.tiles.is_some()
+            && (format.is_tiled() || (format == Format::Png16 && options.engine.is_some()));
         let targets: Vec<PathBuf> = match exporter.tiles().filter(|_| tiled) {
             Some(tiles) => tiles
                 .iter()

@@ -64,13 +64,14 @@ impl Exporter for Obj {
             grid: field.grid,
             field_slopes: field.slopes,
         };
-        let mut header = mesh_header(layout, field.grid, field.about, &self.sidecar);
+        let exact = field.slopes.is_some();
+        let mut header = mesh_header(layout, (field.grid, exact), field.about, &self.sidecar);
         header.push(tile_line(tile, self.tiles.len(), layout.placement));
         write_tile(out, &mesh, tile, name, &header)
     }
 
-    fn describe(&self, doc: &mut Sidecar, _cx: &Describe) {
-        doc.mesh = Some(self.layout.info());
+    fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
+        doc.mesh = Some(self.layout.info(cx.exact_slopes));
     }
 
     fn mesh_layout(&self) -> Option<&MeshLayout> {
@@ -79,8 +80,13 @@ impl Exporter for Obj {
 }
 
 /// The comment lines of a mesh file: the frame, the winding, the field.
-fn mesh_header(layout: &MeshLayout, grid: &Grid, about: &str, sidecar: &str) -> Vec<String> {
-    let info = layout.info();
+fn mesh_header(
+    layout: &MeshLayout,
+    (grid, exact_slopes): (&Grid, bool),
+    about: &str,
+    sidecar: &str,
+) -> Vec<String> {
+    let info = layout.info(exact_slopes);
     let s = &grid.spec;
     let mut lines = vec![format!(
         "seasynth {} height-field mesh, meters",
@@ -242,6 +248,7 @@ mod tests {
             uv: TileUv::Global,
             placement: Placement::Global,
             periodic: true,
+            offset: 0.0,
         };
         let mesh = Mesh {
             layout: &layout,

@@ -5,6 +5,8 @@
 use serde::Serialize;
 
 use super::Format;
+use super::exr::{ExrCompression, ExrOptions};
+use super::maps::{MapEncoding, MapKind};
 use crate::error::{Error, ParamError, Result};
 
 /// Which engine axis points up in a mesh.
@@ -37,6 +39,9 @@ pub enum Engine {
     Unity,
     /// Unreal's recommended landscape sizes (127 … 8129); 32768 = 0 m, Z scale recorded.
     Unreal,
+    /// Godot's terrain plugins: HTerrain's 2ⁿ+1 sizes (33 … 4097, square), 16-bit values by
+    /// the height mapping (the height range Terrain3D and HTerrain ask for on import).
+    Godot,
 }
 
 /// Byte order of raw samples.
@@ -69,6 +74,11 @@ pub struct ExportOptions {
     pub periodic_tiles: bool,
     pub engine: Option<Engine>,
     pub byte_order: ByteOrder,
+    /// How `.exr` files (heights and maps) are written.
+    pub exr: ExrOptions,
+    /// Where the field's samples sit: a parameter of the field (`--sample-at`), copied
+    /// here by the writer of the field so that files can record it (GeoTIFF's raster type).
+    pub sample_at: crate::config::SampleAt,
     /// The flags given, to reject those that no output uses.
     given: Vec<&'static str>,
 }
@@ -84,6 +94,8 @@ impl Default for ExportOptions {
             periodic_tiles: false,
             engine: None,
             byte_order: ByteOrder::Little,
+            exr: ExrOptions::default(),
+            sample_at: crate::config::SampleAt::Corners,
             given: Vec::new(),
         }
     }
@@ -172,9 +184,25 @@ impl ExportOptions {
                 o.engine = Some(choice(
                     "--engine",
                     t,
-                    &[("unity", Engine::Unity), ("unreal", Engine::Unreal)],
+                    &[
+                        ("unity", Engine::Unity),
+                        ("unreal", Engine::Unreal),
+                        ("godot", Engine::Godot),
+                    ],
                 )?)
             }
+            "--exr-compression" => {
+                o.exr.compression = choice(
+                    "--exr-compression",
+                    t,
+                    &[
+                        ("none", ExrCompression::None),
+                        ("zip", ExrCompression::Zip),
+                        ("piz", ExrCompression::Piz),
+                    ],
+                )?
+            }
+            "--exr-half" => o.exr.half = true,
             "--byte-order" => {
                 o.byte_order = choice(
                     "--byte-order",
@@ -185,7 +213,7 @@ impl ExportOptions {
             _ => {
                 return Err(bad(
                     "export flag",
-                    "--up, --mesh-step, --vertical-scale, --tiles, --tile-uv, --periodic-tiles, --engine or --byte-order",
+                    "--up, --mesh-step, --vertical-scale, --tiles, --tile-uv, --periodic-tiles, --engine, --byte-order, --exr-compression or --exr-half",
                     flag,
                 ));
             }
@@ -197,25 +225,50 @@ impl ExportOptions {
     /// Rejects flags that none of `formats` uses, and combinations that cannot be
     /// honoured, so that no flag is silently ignored.
     pub fn check(&self, formats: &[Format], periodic: bool) -> Result<()> {
+        self.check_outputs(formats, &[], periodic)
+    }
+
+    /// [`check`](Self::check) with the maps written besides the height `formats` (an
+    /// `.exr` map uses the EXR flags, a `.disp.exr` the up axis).
+    pub fn check_outputs(
+        &self,
+        formats: &[Format],
+        maps: &[(MapKind, MapEncoding)],
+        periodic: bool,
+    ) -> Result<()> {
         let has = |f: &[Format]| formats.iter().any(|x| f.contains(x));
+        let exr_map = maps.iter().any(|(_, e)| *e == MapEncoding::Exr);
+        let disp_exr = maps.contains(&(MapKind::Displacement, MapEncoding::Exr));
         let mesh = has(&[Format::Obj, Format::Glb]);
         let raw = has(&[Format::R16, Format::R32]);
+        let engine = raw || has(&[Format::Png16]);
+        let exr = exr_map || has(&[Format::Exr]);
         let unused = |flag: &str, what: &str| Error::Set {
             origin: flag.to_string(),
             message: format!("applies only to {what} outputs, and none is given"),
         };
         for &flag in &self.given {
             match flag {
-                "--up" | "--mesh-step" | "--vertical-scale" | "--tile-uv" | "--periodic-tiles"
-                    if !mesh =>
-                {
+                "--up" if !mesh && !disp_exr => {
+                    return Err(unused(flag, ".obj, .glb and .disp.exr"));
+                }
+                "--mesh-step" | "--vertical-scale" | "--tile-uv" | "--periodic-tiles" if !mesh => {
                     return Err(unused(flag, ".obj and .glb"));
                 }
-                "--engine" | "--byte-order" if !raw => {
+                "--engine" if !engine => {
+                    return Err(unused(flag, ".r16, .r32 and .png"));
+                }
+                "--byte-order" if !raw => {
                     return Err(unused(flag, ".r16 and .r32"));
                 }
-                "--tiles" if !mesh && !raw => {
-                    return Err(unused(flag, ".obj, .glb, .r16 and .r32"));
+                "--exr-compression" | "--exr-half" if !exr => {
+                    return Err(unused(flag, ".exr"));
+                }
+                "--tiles" if !(mesh || raw || (self.engine.is_some() && engine)) => {
+                    return Err(unused(
+                        flag,
+                        ".obj, .glb, .r16 and .r32 (and .png with --engine)",
+                    ));
                 }
                 "--tile-uv" | "--periodic-tiles" if self.tiles.is_none() => {
                     return Err(Error::Set {
@@ -317,7 +370,7 @@ mod tests {
         let o = parse(|a| a.engine = Some("unity".into())).unwrap();
         let e = o.check(&[Format::Obj], true).unwrap_err().to_string();
         assert!(
-            e.starts_with("--engine: applies only to .r16 and .r32"),
+            e.starts_with("--engine: applies only to .r16, .r32 and .png"),
             "{e}"
         );
         o.check(&[Format::R16], true).unwrap();

@@ -24,20 +24,27 @@ use std::io::{self, Write};
 
 use super::mesh::{self, Tile};
 use super::options::{ByteOrder, Engine, Tiles};
-use super::sidecar::{RawInfo, Sidecar, UnityImport, UnrealImport};
+use super::sidecar::{GodotImport, RawInfo, Sidecar, UnityImport, UnrealImport};
 use super::{Describe, Exporter, FieldOut, Format, HeightMapping, WriteSeek};
 use crate::error::Result;
 
-/// The raw writer: `.r16` or `.r32` samples of a lattice, one file per tile.
+/// The raw writer: `.r16` or `.r32` samples of a lattice, one file per tile; or the
+/// `.r16` samples as a 16-bit grayscale PNG (a PNG for `--engine`).
 pub struct Raw {
     pub layout: RawLayout,
     /// `.r16` (else `.r32`).
     pub r16: bool,
+    /// The 16-bit samples in a PNG (else headerless).
+    pub png: bool,
 }
 
 impl Exporter for Raw {
     fn format(&self) -> Format {
-        if self.r16 { Format::R16 } else { Format::R32 }
+        match (self.png, self.r16) {
+            (true, _) => Format::Png16,
+            (false, true) => Format::R16,
+            (false, false) => Format::R32,
+        }
     }
 
     fn tiles(&self) -> Option<&[Tile]> {
@@ -57,6 +64,17 @@ impl Exporter for Raw {
             Samples::R32
         };
         let tile = &self.layout.tiles[part];
+        if let (true, Samples::R16(e)) = (self.png, samples) {
+            let (nw, nh) = tile.size();
+            let mut values = Vec::with_capacity(nw * nh);
+            for r in tile.vy.0..tile.vy.0 + nh {
+                for c in tile.vx.0..tile.vx.0 + nw {
+                    values.push(e.encode(self.layout.height(field.grid, c, r)));
+                }
+            }
+            let spec = GridSpec::new(nw, nh, 1.0, 1.0);
+            return super::maps::write_gray16(out, &spec, &values);
+        }
         write_tile(out, field.grid, &self.layout, tile, samples)
     }
 
@@ -64,14 +82,18 @@ impl Exporter for Raw {
         self.r16 && self.layout.engine != Some(Engine::Unreal)
     }
 
-    /// `.r16` and `.r32` of one stem share the layout: one record of both.
+    /// `.r16`, `.r32` and an engine's `.png` of one stem share the layout: one record.
     fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
         let has = |f: Format| cx.formats.contains(&f);
-        if self.r16 || !has(Format::R16) {
+        if (self.r16 && !(self.png && has(Format::R16))) || !(has(Format::R16) || self.png) {
             let r16 = self
                 .r16
                 .then(|| super::r16_encoding(self.layout.engine, cx.mapping));
-            doc.raw = Some(self.layout.info(cx.spec, r16, has(Format::R32)));
+            let mut info = self.layout.info(cx.spec, r16, has(Format::R32));
+            if self.png && !has(Format::R16) && !has(Format::R32) {
+                info.layout = "16-bit grayscale PNG; row 0 is y = 0, column 0 is x = 0";
+            }
+            doc.raw = Some(info);
         }
     }
 
@@ -187,7 +209,7 @@ impl RawLayout {
             (Some(e), _) => {
                 let per_tile = |k: usize| edge(k) / parts[k];
                 let s = match e {
-                    Engine::Unity => {
+                    Engine::Unity | Engine::Godot => {
                         let s = nearest_size(&UNITY_SIZES, per_tile(0).max(per_tile(1)));
                         [s, s]
                     }
@@ -333,6 +355,26 @@ impl RawLayout {
             }),
             _ => None,
         };
+        let godot = match (self.engine, r16) {
+            (Some(Engine::Godot), Some(R16Encoding::Mapping(m))) => Some(GodotImport {
+                resolution: per_tile,
+                height_range_m: [m.min_m, m.max_m],
+                spacing_m: spacing,
+                hterrain: format!(
+                    "Import: heightmap = the .r16 or .png, Min Height {} m, Max Height {} m \
+                     (map size {} = 2^n + 1); scale the terrain node by {} m per cell",
+                    m.min_m, m.max_m, per_tile[0], spacing[0]
+                ),
+                terrain3d: format!(
+                    "Importer: height file = the .r16/.png with Height Offset {} m and Import \
+                     Scale {} m (the range), or the field's .exr at scale 1; vertex spacing {} m",
+                    m.min_m,
+                    m.max_m - m.min_m,
+                    spacing[0]
+                ),
+            }),
+            _ => None,
+        };
         let unreal = match r16 {
             Some(R16Encoding::Unreal { z_scale }) => Some(UnrealImport {
                 resolution: per_tile,
@@ -365,6 +407,7 @@ impl RawLayout {
             r32: r32.then_some("32-bit IEEE float, meters"),
             unity,
             unreal,
+            godot,
         }
     }
 }

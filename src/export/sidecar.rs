@@ -28,6 +28,20 @@ pub struct GridInfo {
     pub extent_m: [f64; 2],
     /// Where sample (i, j) sits and how rows are stored.
     pub layout: &'static str,
+    /// `corners` or `centers` (`--sample-at`).
+    pub sample_at: &'static str,
+}
+
+impl GridInfo {
+    /// The grid of `params`, with where its samples sit.
+    pub fn of(params: &Params) -> Self {
+        let mut g = GridInfo::from(&params.grid_spec());
+        g.sample_at = params.grid.sample_at.name();
+        if !params.grid.sample_at.is_corners() {
+            g.layout = "sample (i, j) at x = (i + 0.5)*dx_m, y = (j + 0.5)*dy_m (texel centres); image row j is y_j, row 0 first";
+        }
+        g
+    }
 }
 
 impl From<&GridSpec> for GridInfo {
@@ -39,6 +53,7 @@ impl From<&GridSpec> for GridInfo {
             dy_m: s.dy_m(),
             extent_m: [s.extent_x_m, s.extent_y_m],
             layout: "sample (i, j) at x = i*dx_m, y = j*dy_m; image row j is y_j, row 0 first",
+            sample_at: "corners",
         }
     }
 }
@@ -92,16 +107,7 @@ pub struct Sidecar<'a> {
 #[derive(Debug, Serialize)]
 pub struct ExrInfo {
     pub channel: &'static str,
-    pub sample: &'static str,
-}
-
-impl Default for ExrInfo {
-    fn default() -> Self {
-        Self {
-            channel: EXR_CHANNEL,
-            sample: "32-bit float, meters; uncompressed scan lines, row 0 is y = 0",
-        }
-    }
+    pub sample: String,
 }
 
 /// The GeoTIFF frame of the float TIFF.
@@ -115,12 +121,17 @@ pub struct GeoTiffInfo {
 }
 
 impl GeoTiffInfo {
-    pub fn new(spec: &GridSpec) -> Self {
+    /// The frame of a TIFF of `spec`, samples at texel centres (PixelIsArea) when `area`.
+    pub fn new(spec: &GridSpec, area: bool) -> Self {
         Self {
             pixel_scale_m: [spec.dx_m(), spec.dy_m(), 0.0],
             tiepoint: [0.0; 6],
             crs: CRS_CITATION,
-            raster_type: "PixelIsPoint: sample (i, j) at model (i*dx_m, -j*dy_m)",
+            raster_type: if area {
+                "PixelIsArea: pixel (i, j) covers model [i*dx_m, (i+1)*dx_m] x [-(j+1)*dy_m, -j*dy_m]; the sample is its centre"
+            } else {
+                "PixelIsPoint: sample (i, j) at model (i*dx_m, -j*dy_m)"
+            },
             model_y: "GIS model Y = -y (row 0 at the top)",
         }
     }
@@ -148,7 +159,7 @@ impl<'a> Sidecar<'a> {
             version: env!("CARGO_PKG_VERSION"),
             seed: params.seed,
             files: Vec::new(),
-            grid: GridInfo::from(&params.grid_spec()),
+            grid: GridInfo::of(params),
             stats,
             mapping: None,
             mesh: None,
@@ -216,6 +227,21 @@ pub struct UnrealImport {
     pub decode: &'static str,
 }
 
+/// What Godot's terrain plugins (HTerrain, Terrain3D) need on import.
+#[derive(Debug, Serialize)]
+pub struct GodotImport {
+    /// Samples of each heightmap (x, y): 2ⁿ + 1, as HTerrain requires.
+    pub resolution: [usize; 2],
+    /// Heights of 16-bit values 0 and 65535, meters.
+    pub height_range_m: [f64; 2],
+    /// Meters between samples.
+    pub spacing_m: [f64; 2],
+    /// The numbers HTerrain's import dialog asks for.
+    pub hterrain: String,
+    /// The numbers Terrain3D's importer asks for.
+    pub terrain3d: String,
+}
+
 /// The raw outputs of one sidecar, as recorded there.
 #[derive(Debug, Serialize)]
 pub struct RawInfo {
@@ -241,6 +267,8 @@ pub struct RawInfo {
     pub unity: Option<UnityImport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unreal: Option<UnrealImport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub godot: Option<GodotImport>,
 }
 
 #[cfg(test)]

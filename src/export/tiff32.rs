@@ -19,7 +19,12 @@ use super::{Describe, Exporter, FieldOut, Format, HeightMapping, RowSink, WriteS
 use crate::grid::{Grid, GridSpec};
 
 /// The float TIFF writer, whole or row by row.
-pub struct Tiff32;
+pub struct Tiff32 {
+    /// Samples at texel centres (`--sample-at centers`): GTRasterType PixelIsArea, so
+    /// pixel (i, j)'s area starts at the tiepoint and its centre is the sample; else
+    /// PixelIsPoint, the sample at the tiepoint.
+    pub area: bool,
+}
 
 impl Exporter for Tiff32 {
     fn format(&self) -> Format {
@@ -33,11 +38,11 @@ impl Exporter for Tiff32 {
         _name: &str,
         out: &mut dyn WriteSeek,
     ) -> std::io::Result<()> {
-        write(out, field.grid)
+        write_as(out, field.grid, self.area)
     }
 
     fn describe(&self, doc: &mut Sidecar, cx: &Describe) {
-        doc.geotiff = Some(GeoTiffInfo::new(cx.spec));
+        doc.geotiff = Some(GeoTiffInfo::new(cx.spec, self.area));
     }
 
     fn row_sink(&self) -> Option<&dyn RowSink> {
@@ -54,7 +59,7 @@ impl RowSink for Tiff32 {
         batch_rows: usize,
         fill: &mut dyn FnMut(usize, &mut [f32]) -> std::io::Result<()>,
     ) -> std::io::Result<()> {
-        write_strips(out, spec, batch_rows, fill)
+        write_strips(out, spec, self.area, batch_rows, fill)
     }
 }
 
@@ -62,9 +67,9 @@ impl RowSink for Tiff32 {
 const ROWS_PER_STRIP: u32 = 16;
 
 /// GeoKey directory: version 1.1.0 and four keys (key, location, count, value):
-/// GTModelType = user-defined, GTRasterType = PixelIsPoint, GTCitation in the ASCII
-/// parameters, ProjLinearUnits = metre.
-fn geo_keys(citation_len: u16) -> [u16; 20] {
+/// GTModelType = user-defined, GTRasterType = PixelIsPoint (PixelIsArea with `area`),
+/// GTCitation in the ASCII parameters, ProjLinearUnits = metre.
+fn geo_keys(citation_len: u16, area: bool) -> [u16; 20] {
     const ASCII_PARAMS: u16 = 34737;
     [
         1,
@@ -78,7 +83,7 @@ fn geo_keys(citation_len: u16) -> [u16; 20] {
         1025,
         0,
         1,
-        2, //
+        if area { 1 } else { 2 }, //
         1026,
         ASCII_PARAMS,
         citation_len,
@@ -90,13 +95,25 @@ fn geo_keys(citation_len: u16) -> [u16; 20] {
     ]
 }
 
-/// Encodes `grid` as a single-channel float TIFF.
+/// Encodes `grid` as a single-channel float TIFF, samples at the grid's corners.
 pub fn write<W: Write + Seek>(w: W, grid: &Grid) -> std::io::Result<()> {
+    write_as(w, grid, false)
+}
+
+/// Encodes `grid` as a single-channel float TIFF, samples tagged as texel centres
+/// (PixelIsArea) when `area`.
+pub fn write_as<W: Write + Seek>(w: W, grid: &Grid, area: bool) -> std::io::Result<()> {
     let nx = grid.spec.nx;
-    write_strips(w, &grid.spec, ROWS_PER_STRIP as usize, |first, strip| {
-        strip.copy_from_slice(&grid.data[first * nx..first * nx + strip.len()]);
-        Ok(())
-    })
+    write_strips(
+        w,
+        &grid.spec,
+        area,
+        ROWS_PER_STRIP as usize,
+        |first, strip| {
+            strip.copy_from_slice(&grid.data[first * nx..first * nx + strip.len()]);
+            Ok(())
+        },
+    )
 }
 
 /// Files above this size are written as BigTIFF (64-bit offsets); classic TIFF's offsets
@@ -110,6 +127,7 @@ pub const BIGTIFF_ABOVE_BYTES: u64 = (4 << 30) - (64 << 20);
 pub fn write_strips<W: Write + Seek>(
     w: W,
     spec: &GridSpec,
+    area: bool,
     batch_rows: usize,
     fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
@@ -118,18 +136,19 @@ pub fn write_strips<W: Write + Seek>(
         encode(
             TiffEncoder::new_big(w).map_err(err)?,
             spec,
-            batch_rows,
+            (area, batch_rows),
             fill,
         )
     } else {
-        encode(TiffEncoder::new(w).map_err(err)?, spec, batch_rows, fill)
+        let enc = TiffEncoder::new(w).map_err(err)?;
+        encode(enc, spec, (area, batch_rows), fill)
     }
 }
 
 fn encode<W: Write + Seek, K: TiffKind>(
     mut enc: TiffEncoder<W, K>,
     spec: &GridSpec,
-    batch_rows: usize,
+    (area, batch_rows): (bool, usize),
     mut fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let err = |e: tiff::TiffError| std::io::Error::other(e.to_string());
@@ -151,7 +170,7 @@ fn encode<W: Write + Seek, K: TiffKind>(
     let citation = format!("{CRS_CITATION}|");
     dir.write_tag(
         Tag::GeoKeyDirectoryTag,
-        &geo_keys(citation.len() as u16)[..],
+        &geo_keys(citation.len() as u16, area)[..],
     )
     .map_err(err)?;
     dir.write_tag(Tag::GeoAsciiParamsTag, citation.as_str())

@@ -30,6 +30,13 @@ pub enum AlphaMap {
 impl AlphaMap {
     /// Builds the map for `spec`; an image is read and resampled here.
     pub fn new(cfg: &AlphaConfig, spec: &GridSpec) -> Result<Self> {
+        Self::with_offset(cfg, spec, 0.0)
+    }
+
+    /// [`new`](Self::new) for samples at ((i + offset)·dx, (j + offset)·dy): offset ½ for
+    /// `--sample-at centers` (ramps and radial maps; an α image is refused, as its pixels
+    /// are taken to be the grid's samples).
+    pub fn with_offset(cfg: &AlphaConfig, spec: &GridSpec, offset: f64) -> Result<Self> {
         Ok(match cfg {
             AlphaConfig::Constant { value } => AlphaMap::Constant(*value as f32),
             AlphaConfig::Ramp { axis, power } => {
@@ -38,7 +45,7 @@ impl AlphaMap {
                     Axis::Y => (spec.ny, spec.extent_y_m, spec.dy_m()),
                 };
                 let values = (0..n)
-                    .map(|i| (1.0 - (i as f64 * step / l).powf(*power)) as f32)
+                    .map(|i| (1.0 - ((i as f64 + offset) * step / l).powf(*power)) as f32)
                     .collect();
                 AlphaMap::Ramp {
                     axis: *axis,
@@ -51,10 +58,22 @@ impl AlphaMap {
                 radius_m,
             } => AlphaMap::Radial {
                 spec: *spec,
-                center_m: center_m.unwrap_or([spec.extent_x_m / 2.0, spec.extent_y_m / 2.0]),
+                // Moving the centre by −offset cells moves the samples by +offset.
+                center_m: {
+                    let c = center_m.unwrap_or([spec.extent_x_m / 2.0, spec.extent_y_m / 2.0]);
+                    [c[0] - offset * spec.dx_m(), c[1] - offset * spec.dy_m()]
+                },
                 radius_m: radius_m.unwrap_or(spec.extent_x_m.min(spec.extent_y_m) / 2.0),
                 power: *power,
             },
+            AlphaConfig::Image { .. } if offset != 0.0 => {
+                return Err(crate::error::Error::Set {
+                    origin: "--sample-at centers".into(),
+                    message: "an α image gives α at the grid's samples; use --sample-at \
+                              corners with blend.alpha from an image"
+                        .into(),
+                });
+            }
             AlphaConfig::Image { path } => AlphaMap::Sampled {
                 nx: spec.nx,
                 values: resample(&read_gray(path)?, spec.nx, spec.ny),

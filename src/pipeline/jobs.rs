@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use crate::config::Params;
 use crate::error::ParamError;
-use crate::export::maps::MapKind;
+use crate::export::maps::{MapEncoding, MapKind};
 use crate::export::{Format, HeightMapping, OutputKind};
 
 /// One file kind of a frame or job, as `--format` names it.
@@ -20,32 +20,42 @@ pub enum FileKind {
     Png,
     /// Float height TIFF.
     Tif,
-    /// A map of the wave state (normal, foam, Jacobian, displacement).
-    Map(MapKind),
+    /// Float height EXR.
+    Exr,
+    /// A map of the wave state (normal, foam, Jacobian, displacement), as its usual image
+    /// or as EXR.
+    Map(MapKind, MapEncoding),
     /// A rendered perspective view (`seasynth render`'s default camera).
     Preview,
 }
 
 /// The names `FileKind::parse` accepts, for error messages.
-pub const FILE_KINDS: &str = "png, tif, normal, foam, jacobian, disp or preview";
+pub const FILE_KINDS: &str = "png, tif, exr, normal, foam, jacobian, disp, preview, or a map as \
+                              EXR: disp.exr, normal.exr, foam.exr, jacobian.exr";
 
 impl FileKind {
     pub fn parse(s: &str) -> Result<Self, ParamError> {
-        Ok(match s.trim() {
+        let s = s.trim().to_ascii_lowercase();
+        let image = |k| FileKind::Map(k, MapEncoding::Image);
+        Ok(match s.as_str() {
             "png" => FileKind::Png,
             "tif" | "tiff" => FileKind::Tif,
-            "normal" => FileKind::Map(MapKind::Normal),
-            "foam" => FileKind::Map(MapKind::Foam),
-            "jacobian" => FileKind::Map(MapKind::Jacobian),
-            "disp" => FileKind::Map(MapKind::Displacement),
+            "exr" => FileKind::Exr,
+            "normal" => image(MapKind::Normal),
+            "foam" => image(MapKind::Foam),
+            "jacobian" => image(MapKind::Jacobian),
+            "disp" => image(MapKind::Displacement),
             "preview" => FileKind::Preview,
-            other => {
-                return Err(ParamError {
-                    name: "--format".into(),
-                    allowed: FILE_KINDS.into(),
-                    got: other.into(),
-                });
-            }
+            other => match OutputKind::of_path(std::path::Path::new(&format!("x.{other}"))) {
+                Ok(OutputKind::Map(kind, enc)) => FileKind::Map(kind, enc),
+                _ => {
+                    return Err(ParamError {
+                        name: "--format".into(),
+                        allowed: FILE_KINDS.into(),
+                        got: other.into(),
+                    });
+                }
+            },
         })
     }
 
@@ -54,10 +64,16 @@ impl FileKind {
         match self {
             FileKind::Png => OutputKind::Height(Format::Png16),
             FileKind::Tif => OutputKind::Height(Format::Tiff32),
-            FileKind::Map(kind) => OutputKind::Map(*kind),
+            FileKind::Exr => OutputKind::Height(Format::Exr),
+            FileKind::Map(kind, enc) => OutputKind::Map(*kind, *enc),
             FileKind::Preview => OutputKind::Preview,
         }
         .suffix()
+    }
+
+    /// True for float EXR files.
+    pub fn is_exr(&self) -> bool {
+        matches!(self, FileKind::Exr | FileKind::Map(_, MapEncoding::Exr))
     }
 }
 

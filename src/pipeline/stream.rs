@@ -152,7 +152,9 @@ pub fn generate(
     // Stage every file (and one sidecar per stem) before any work.
     let mut outputs = Vec::new();
     for p in paths {
-        outputs.push(Output::prepare(p)?);
+        let mut options = crate::export::options::ExportOptions::default();
+        options.sample_at = params.grid.sample_at;
+        outputs.push(Output::prepare_with(p, &options)?);
     }
     let mut stems: Vec<PathBuf> = Vec::new();
     for p in paths {
@@ -250,6 +252,7 @@ pub fn generate(
             spec: &spec,
             mapping: &range,
             formats: &formats,
+            exact_slopes: false,
         };
         for o in &of_stem {
             doc.files.push(FileEntry {
@@ -264,6 +267,7 @@ pub fn generate(
         staged.write_json(&doc)?;
     }
     Ok(crate::pipeline::write::Written {
+        import_notes: Vec::new(),
         stats,
         mapping: mapping.map_or(
             HeightMapping {

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 
 use crate::config::Params;
 use crate::error::Error;
-use crate::export::maps::{self, MapContext, MapKind};
+use crate::export::maps::{self, MapContext, MapEncoding, MapKind};
 use crate::export::mesh;
 use crate::export::options::ExportOptions;
 use crate::export::sidecar::{self, FileEntry, MappingInfo, Sidecar};
@@ -36,6 +36,34 @@ pub struct Written {
     pub has_png: bool,
     /// The outputs, as given (maps and previews last).
     pub files: Vec<PathBuf>,
+    /// What to type into an engine's import dialog, one line per engine output (also in
+    /// the sidecar's `raw` section).
+    pub import_notes: Vec<String>,
+}
+
+/// The import settings of a sidecar's engine outputs, one line each.
+fn import_notes(doc: &Sidecar) -> Vec<String> {
+    let mut notes = Vec::new();
+    let Some(raw) = &doc.raw else {
+        return notes;
+    };
+    if let Some(u) = &raw.unity {
+        notes.push(format!(
+            "Unity: Import Raw, Depth 16 bit, Resolution {}, Byte Order {}, Terrain Size {:?} m (X, height, Z), position y = {} m",
+            u.resolution, u.byte_order, u.terrain_size_m, u.terrain_position_m[1]
+        ));
+    }
+    if let Some(u) = &raw.unreal {
+        notes.push(format!(
+            "Unreal: Landscape import, resolution {}x{}, Scale X {} Y {} Z {}, actor at Z = 0",
+            u.resolution[0], u.resolution[1], u.scale[0], u.scale[1], u.scale[2]
+        ));
+    }
+    if let Some(g) = &raw.godot {
+        notes.push(format!("Godot HTerrain: {}", g.hterrain));
+        notes.push(format!("Godot Terrain3D: {}", g.terrain3d));
+    }
+    notes
 }
 
 /// The derived fields a synthesis of `params` needs for outputs of these kinds: `maps`
@@ -44,7 +72,7 @@ pub struct Written {
 /// resampled).
 fn needed_extras(
     params: &Params,
-    maps: impl IntoIterator<Item = Option<MapKind>>,
+    maps: impl IntoIterator<Item = Option<(MapKind, MapEncoding)>>,
     formats: &[Format],
 ) -> crate::field::dynamics::Extras {
     let (mut kinds, mut previews) = (Vec::new(), false);
@@ -69,7 +97,7 @@ pub(crate) fn needs_extras(params: &Params, paths: &[PathBuf]) -> bool {
     for p in paths {
         match OutputKind::of_path(p) {
             Ok(OutputKind::Preview) => maps.push(None),
-            Ok(OutputKind::Map(kind)) => maps.push(Some(kind)),
+            Ok(OutputKind::Map(kind, enc)) => maps.push(Some((kind, enc))),
             Ok(OutputKind::Height(f)) => formats.push(f),
             Err(_) => {}
         }
@@ -96,13 +124,13 @@ pub fn write_field(
     refuse_repeated(paths)?;
     // Maps of the wave state (NAME.normal.png, …) and previews (NAME.preview.png) come
     // from the same computed state as the height outputs; they are staged now too.
-    let mut staged_maps: Vec<(Staged, Option<MapKind>)> = Vec::new();
+    let mut staged_maps: Vec<(Staged, Option<(MapKind, MapEncoding)>)> = Vec::new();
     let mut height_paths = Vec::new();
     let mut formats = Vec::new();
     for p in paths {
         match OutputKind::of_path(p)? {
             OutputKind::Preview => staged_maps.push((Staged::create(p)?, None)),
-            OutputKind::Map(kind) => staged_maps.push((Staged::create(p)?, Some(kind))),
+            OutputKind::Map(kind, enc) => staged_maps.push((Staged::create(p)?, Some((kind, enc)))),
             OutputKind::Height(format) => {
                 height_paths.push(p.clone());
                 formats.push(format);
@@ -110,9 +138,14 @@ pub fn write_field(
         }
     }
     let paths = height_paths;
-    options.check(&formats, periodic)?;
+    let map_kinds: Vec<(MapKind, MapEncoding)> =
+        staged_maps.iter().filter_map(|(_, k)| *k).collect();
+    options.check_outputs(&formats, &map_kinds, periodic)?;
     // Stage every file before computing: a bad path fails now, not after the work.
     // (No path is given twice: checked above, before the maps were staged.)
+    let mut options = options.clone();
+    options.sample_at = params.grid.sample_at;
+    let options = &options;
     let manager = ExportManager::plan(&paths, options, &spec, periodic)?;
     let outputs = &manager.outputs;
     let mut stems: BTreeMap<PathBuf, Vec<&Output>> = BTreeMap::new();
@@ -191,6 +224,7 @@ pub fn write_field(
     // The sidecars and tile indexes describe the outputs' layouts: built before the
     // outputs are written (and consumed), saved after them.
     let mut docs = Vec::new();
+    let mut notes_out = Vec::new();
     for (staged, index, outs) in staged_stems {
         let mut doc = Sidecar::new(params, &synthesis.info, stats);
         doc.batch = notes.batch;
@@ -201,6 +235,7 @@ pub fn write_field(
             spec: &spec,
             mapping: &mapping,
             formats: &stem_formats,
+            exact_slopes: mesh_slopes.is_some(),
         };
         for o in outs.iter() {
             for f in &o.files {
@@ -216,6 +251,7 @@ pub fn write_field(
         if uses_mapping {
             doc.mapping = Some(MappingInfo::new(mapping, source));
         }
+        notes_out.extend(import_notes(&doc));
         let index = index.map(|index_file| {
             doc.tiles_index = Some(file_name(&index_file.path));
             (index_file, TileIndex::new(&staged.path, sets))
@@ -241,17 +277,23 @@ pub fn write_field(
         slopes: mesh_slopes.as_ref(),
         about: &about,
     };
-    let has_png = formats.contains(&Format::Png16);
+    // A PNG through the 16-bit mapping (not one in Unreal's encoding).
+    let has_png = manager
+        .outputs
+        .iter()
+        .any(|o| o.format() == Format::Png16 && o.exporter.uses_mapping());
     manager.write_all(&field_out)?;
     let map_paths: Vec<PathBuf> = staged_maps.iter().map(|(s, _)| s.path.clone()).collect();
     for (staged, kind) in staged_maps {
         match kind {
-            Some(kind) => {
+            Some((kind, enc)) => {
                 let cx = MapContext {
                     params,
                     synthesis: &synthesis,
+                    up: options.up,
+                    exr: options.exr,
                 };
-                maps::write_map(kind, staged, &cx)?;
+                maps::write_map(kind, enc, staged, &cx)?;
             }
             None => {
                 let img = crate::pipeline::preview::preview_of(params, &synthesis)?;
@@ -270,6 +312,7 @@ pub fn write_field(
         mapping,
         has_png,
         files: paths.iter().chain(&map_paths).cloned().collect(),
+        import_notes: notes_out,
     })
 }
 

@@ -23,8 +23,10 @@ use rayon::prelude::*;
 use rustfft::num_complex::{Complex, Complex32};
 
 mod inverse;
+mod shift;
 
 pub use inverse::InverseFft2;
+pub use shift::shift_samples;
 
 use crate::fastmath;
 use crate::grid::{Grid, GridSpec};

@@ -50,9 +50,10 @@ impl Hybrid {
 impl HeightMethod for Hybrid {
     fn prepare(&mut self, keep_draws: bool) -> Result<()> {
         // Inputs that can fail (an α image) are read before the expensive work.
-        self.alpha = Some(AlphaMap::new(
+        self.alpha = Some(AlphaMap::with_offset(
             &self.params.blend.alpha,
             &self.params.grid_spec(),
+            self.params.grid.sample_at.offset(),
         )?);
         self.sea.prepare(keep_draws)?;
         self.noise.prepare(keep_draws)

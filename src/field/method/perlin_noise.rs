@@ -53,7 +53,9 @@ impl HeightMethod for PerlinNoise {
             perlin_wavelengths_m: perlin::octave_wavelengths(&spec, &pp),
             ..SynthesisInfo::default()
         };
-        self.ready = Some((perlin::perlin_field(&spec, &pp), info));
+        let offset = self.params.grid.sample_at.offset();
+        let noise = perlin::perlin_field_offset(&spec, &pp, offset);
+        self.ready = Some((noise, info));
         Ok(())
     }
 

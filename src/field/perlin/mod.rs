@@ -293,15 +293,16 @@ struct XTable {
 }
 
 impl XTable {
-    fn new(o: &Octave, nx: usize, dx: f64) -> Self {
+    fn new(o: &Octave, nx: usize, dx: f64, offset: f64) -> Self {
         let mut cols = Vec::new();
         let mut fx = Vec::with_capacity(nx);
         let mut sx = Vec::with_capacity(nx);
         let mut runs: Vec<Run> = Vec::new();
         let mut prev: Option<i64> = None;
         for i in 0..nx {
-            // Exactly the lattice coordinate `perlin_at` computes at x = spec.x_m(i).
-            let (k, f) = split(i as f64 * dx * o.freq_x);
+            // Exactly the lattice coordinate `perlin_at` computes at x = (i + offset)·dx
+            // (spec.x_m(i) for offset 0).
+            let (k, f) = split((i as f64 + offset) * dx * o.freq_x);
             fx.push(f);
             sx.push(fade(f));
             match (prev, runs.last_mut()) {
@@ -419,10 +420,17 @@ fn add_octave_row<const FIRST: bool>(
 
 /// Computes the rows of `band`, the first being row `y0` of the grid.
 #[inline(always)]
-fn fill_band(spec: &GridSpec, octs: &[Octave], tables: &[XTable], y0: usize, band: &mut [f32]) {
+fn fill_band(
+    spec: &GridSpec,
+    octs: &[Octave],
+    tables: &[XTable],
+    (y0, offset): (usize, f64),
+    band: &mut [f32],
+) {
     let mut scratch: Vec<OctaveScratch> = tables.iter().map(OctaveScratch::new).collect();
     for (r, row) in band.chunks_mut(spec.nx).enumerate() {
-        let y = spec.y_m(y0 + r);
+        // spec.y_m(y0 + r) for offset 0.
+        let y = ((y0 + r) as f64 + offset) * spec.dy_m();
         add_octave_row::<true>(&octs[0], &tables[0], &mut scratch[0], y, row);
         for ((o, t), s) in octs.iter().zip(tables).zip(&mut scratch).skip(1) {
             add_octave_row::<false>(o, t, s, y, row);
@@ -443,10 +451,10 @@ multiversion! {
         spec: &GridSpec,
         octs: &[Octave],
         tables: &[XTable],
-        y0: usize,
+        rows: (usize, f64),
         band: &mut [f32],
     ) {
-        fill_band(spec, octs, tables, y0, band)
+        fill_band(spec, octs, tables, rows, band)
     }
 }
 
@@ -460,11 +468,17 @@ const BAND_SAMPLES: usize = 1 << 16;
 /// same floating-point operations as in [`perlin_at`], so the result does not depend on the
 /// number of threads. Panics on invalid parameters (see [`PerlinParams::validate`]).
 pub fn perlin_field(spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
-    perlin_field_on(Isa::detect(), spec, p)
+    perlin_field_on(Isa::detect(), spec, p, 0.0)
 }
 
-/// [`perlin_field`], its row passes on `isa`.
-fn perlin_field_on(isa: Isa, spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
+/// [`perlin_field`] with sample (i, j) at ((i + offset)·dx, (j + offset)·dy): offset ½
+/// puts the samples at texel centres (`--sample-at centers`), 0 gives [`perlin_field`].
+pub fn perlin_field_offset(spec: &GridSpec, p: &PerlinParams, offset: f64) -> Vec<f32> {
+    perlin_field_on(Isa::detect(), spec, p, offset)
+}
+
+/// [`perlin_field_offset`], its row passes on `isa`.
+fn perlin_field_on(isa: Isa, spec: &GridSpec, p: &PerlinParams, offset: f64) -> Vec<f32> {
     check(spec, p);
     if spec.is_empty() {
         return Vec::new();
@@ -473,13 +487,15 @@ fn perlin_field_on(isa: Isa, spec: &GridSpec, p: &PerlinParams) -> Vec<f32> {
     let nx = spec.nx;
     let tables: Vec<XTable> = octs
         .iter()
-        .map(|o| XTable::new(o, nx, spec.dx_m()))
+        .map(|o| XTable::new(o, nx, spec.dx_m(), offset))
         .collect();
     let band_rows = (BAND_SAMPLES / nx).clamp(1, 64);
     let mut out = vec![0.0f32; spec.len()];
     out.par_chunks_mut(nx * band_rows)
         .enumerate()
-        .for_each(|(b, band)| fill_band_on(isa, spec, &octs, &tables, b * band_rows, band));
+        .for_each(|(b, band)| {
+            fill_band_on(isa, spec, &octs, &tables, (b * band_rows, offset), band)
+        });
     out
 }
 

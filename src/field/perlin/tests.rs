@@ -216,9 +216,9 @@ fn avx2_and_portable_builds_agree_bit_for_bit() {
         ),
     ] {
         // The portable build against every build this processor runs (AVX2, AVX-512).
-        let portable = perlin_field_on(Isa::Plain, &spec, &p);
+        let portable = perlin_field_on(Isa::Plain, &spec, &p, 0.0);
         for isa in Isa::available() {
-            let fast = perlin_field_on(isa, &spec, &p);
+            let fast = perlin_field_on(isa, &spec, &p, 0.0);
             for (k, (a, b)) in portable.iter().zip(&fast).enumerate() {
                 assert_eq!(
                     a.to_bits(),
@@ -382,5 +382,32 @@ fn speed_4096_6_octaves() {
             best * 1e9 / per,
             best * 1e9 / per * threads as f64
         );
+    }
+}
+
+/// `--sample-at centers`: the field with offset ½ is `perlin_at` at the texel centres, bit
+/// for bit, and offset 0 is the corner field.
+#[test]
+fn centers_are_the_noise_at_the_texel_centres() {
+    for (spec, p) in [
+        (
+            GridSpec::new(40, 48, 333.0, 517.0),
+            params(6, 41.0, false, 12),
+        ),
+        (GridSpec::new(32, 16, 64.0, 32.0), params(4, 8.0, true, 3)),
+    ] {
+        assert_eq!(perlin_field_offset(&spec, &p, 0.0), perlin_field(&spec, &p));
+        let f = perlin_field_offset(&spec, &p, 0.5);
+        for j in 0..spec.ny {
+            for i in 0..spec.nx {
+                let (x, y) = (
+                    (i as f64 + 0.5) * spec.dx_m(),
+                    (j as f64 + 0.5) * spec.dy_m(),
+                );
+                let at = perlin_at(&spec, &p, x, y);
+                let g = f[j * spec.nx + i];
+                assert_eq!(g.to_bits(), at.to_bits(), "({i}, {j}): {g} vs {at}");
+            }
+        }
     }
 }

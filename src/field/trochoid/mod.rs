@@ -236,7 +236,14 @@ impl TrochoidSea {
             components,
             turbulence,
             loop_period_s: params.motion.loop_period_s,
-            origin_m: tp.origin_m,
+            // Samples at texel centres: the grid's first sample half a cell in.
+            origin_m: {
+                let (o, spec) = (params.grid.sample_at.offset(), params.grid_spec());
+                [
+                    tp.origin_m[0] + o * spec.dx_m(),
+                    tp.origin_m[1] + o * spec.dy_m(),
+                ]
+            },
             antialias: tp.antialias,
             info,
             isa: Isa::detect(),
@@ -487,6 +494,34 @@ mod tests {
         p.wind.speed_mps = wind;
         p.validate().unwrap();
         p
+    }
+
+    /// `--sample-at centers` evaluates the continuous sea at the texel centres: the grid
+    /// equals the sea of the corner grid evaluated half a cell in.
+    #[test]
+    fn centers_are_the_sea_evaluated_half_a_cell_in() {
+        let p = pm_params(10.0);
+        let mut q = p.clone();
+        q.grid.sample_at = crate::config::SampleAt::Centers;
+        let spec = GridSpec::new(24, 16, 240.0, 96.0);
+        let corners = TrochoidSea::new(&p).unwrap();
+        let frame = corners.frame(2.5, Some((spec.dx_m(), spec.dy_m())));
+        let shifted = TrochoidSea::new(&q).unwrap();
+        // The origin moves by half a cell of the parameters' grid.
+        let (hx, hy) = (p.grid_spec().dx_m() / 2.0, p.grid_spec().dy_m() / 2.0);
+        let g = shifted.grid(&spec, 2.5);
+        let scale = g.data.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+        assert!(scale > 0.0);
+        for j in 0..spec.ny {
+            for i in 0..spec.nx {
+                let want = frame.at(spec.x_m(i) + hx, spec.y_m(j) + hy);
+                let got = g.get(i, j);
+                assert!(
+                    (got - want).abs() <= 1e-5 * scale,
+                    "sample ({i}, {j}): {got} vs {want}"
+                );
+            }
+        }
     }
 
     #[test]

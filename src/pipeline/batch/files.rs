@@ -30,7 +30,7 @@ pub fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
     for f in formats {
         let f = f.trim().to_ascii_lowercase();
         let suffix = match FileKind::parse(&f) {
-            Ok(FileKind::Png) | Ok(FileKind::Tif) => {
+            Ok(FileKind::Png) | Ok(FileKind::Tif) | Ok(FileKind::Exr) => {
                 height = true;
                 f.clone()
             }
@@ -39,7 +39,7 @@ pub fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
                 Format::from_path(Path::new(&format!("x.{f}"))).map_err(|_| {
                     Error::Param(ParamError {
                         name: "--format".into(),
-                        allowed: "png, tif, tiff, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp or preview".into(),
+                        allowed: "png, tif, tiff, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp, preview, or a map as EXR (disp.exr, normal.exr, foam.exr, jacobian.exr)".into(),
                         got: f.clone(),
                     })
                 })?;
