@@ -187,7 +187,7 @@ pub struct RenderArgs {
     /// integer images without a mapping, --extent for the spacing)
     #[arg(long, value_name = "FILE")]
     pub from: Option<PathBuf>,
-    /// The image to write, an 8-bit sRGB PNG
+    /// The image to write, 8-bit sRGB: .png, .jpg (quality 90) or .webp (lossless)
     #[arg(short = 'o', long = "output", value_name = "PNG")]
     pub output: PathBuf,
     /// Image size in pixels (default 1280x720)

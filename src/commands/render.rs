@@ -309,8 +309,8 @@ fn read_from(
 
 /// The files `render -o` writes.
 const PREVIEWS: Allowed = Allowed {
-    what: "previews are 8-bit RGB PNG images",
-    extensions: &["png"],
+    what: "previews are 8-bit RGB PNG, JPEG or WebP images",
+    extensions: &["png", "jpg", "jpeg", "webp"],
 };
 
 /// Runs `seasynth render`.
@@ -353,7 +353,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let image = crate::render::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    crate::export::rgb8::write(staged, &image.rgb, (image.width, image.height))?;
+    crate::export::rgb8::write_by_name(staged, &image.rgb, (image.width, image.height))?;
     if !args.quiet {
         let [x, y, z] = camera.position_m;
         eprintln!(

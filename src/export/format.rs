@@ -50,7 +50,7 @@ pub enum OutputKind {
     Height(Format),
     /// A map of the wave state.
     Map(MapKind),
-    /// A shaded perspective view (8-bit RGB PNG).
+    /// A shaded perspective view (8-bit RGB PNG, JPEG or WebP).
     Preview,
 }
 
@@ -91,7 +91,7 @@ const INNER: &[Inner] = &[
     },
     Inner {
         name: "preview",
-        outer: &["png"],
+        outer: &["png", "jpg", "jpeg", "webp"],
         kind: OutputKind::Preview,
         strict: false,
     },

@@ -84,7 +84,7 @@ fn parse_mapping(text: &str) -> Option<(f64, f64)> {
         .0;
     let (min, step) = rest.split_once(" + value * ")?;
     let (min, step): (f64, f64) = (min.trim().parse().ok()?, step.trim().parse().ok()?);
-    (min.is_finite() && step.is_finite() && step > 0.0).then(|| (min, min + 65535.0 * step))
+    (min.is_finite() && step.is_finite() && step > 0.0).then_some((min, min + 65535.0 * step))
 }
 
 #[cfg(test)]
