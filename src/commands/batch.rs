@@ -158,7 +158,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         manifest.jobs.clone()
     };
     // Random designs: each drawn point is a job entry, its values its assignments.
-    let entries = design_entries(&args, entries, preset.as_deref(), &base)?;
+    let entries = design_entries(&args, entries, preset.as_deref(), &base, &sweeps)?;
     let specs = plan::product(&entries, &sweeps)?;
     let mut keys: Vec<String> = Vec::new();
     for k in entries
@@ -552,6 +552,7 @@ fn design_entries(
     entries: Vec<JobSpec>,
     preset: Option<&str>,
     base: &[Assignment],
+    sweeps: &[Sweep],
 ) -> Result<Vec<JobSpec>> {
     let kind = design::DesignKind::parse(&args.design)?;
     let Some(n) = args.sample else {
@@ -586,9 +587,18 @@ fn design_entries(
         })?,
         None => layers::resolve(preset, base)?.seed,
     };
+    // The design's values are checked with the first job's other values.
+    let mut first = base.to_vec();
+    first.extend(entries[0].assignments.iter().cloned());
+    first.extend(sweeps.iter().map(|s| Assignment {
+        origin: s.origin.clone(),
+        key: s.key.clone(),
+        value: s.values[0].clone(),
+    }));
+    let preset = entries[0].preset.as_deref().or(preset);
     let design = design::Design::new(kind, n, seed, varies, |a| {
-        let mut with = base.to_vec();
-        with.push(a.clone());
+        let mut with = first.clone();
+        with.extend(a.iter().cloned());
         layers::resolve(preset, &with).map(|_| ())
     })?;
     Ok(design.entries(&entries)?)

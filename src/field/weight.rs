@@ -113,7 +113,7 @@ pub fn read_gray(path: &Path) -> Result<GrayImage> {
         path: path.to_path_buf(),
         message,
     };
-    let r = crate::limits::read_raster(path).map_err(|m| bad(format!("α image {m}")))?;
+    let r = crate::limits::read_raster(path).map_err(|m| bad(format!("α image: {m}")))?;
     if let Some(i) = r.values.iter().position(|v| !v.is_finite()) {
         return Err(bad(format!(
             "α image sample (x {}, row {}) is {}: α must be finite",

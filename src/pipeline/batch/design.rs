@@ -351,13 +351,14 @@ fn below(rng: &mut ChaCha8Rng, n: u64) -> u64 {
 
 impl Design {
     /// Checks N and the varied keys, and that every varied key's range or choices give
-    /// valid parameters over the batch's base (`resolve_with`), before anything is written.
+    /// valid parameters over the batch's base (`resolve_with` of the varied keys'
+    /// assignments), before anything is written.
     pub fn new(
         kind: DesignKind,
         n: usize,
         seed: u64,
         varies: Vec<Vary>,
-        resolve_with: impl Fn(&Assignment) -> Result<()>,
+        resolve_with: impl Fn(&[Assignment]) -> Result<()>,
     ) -> Result<Self> {
         if n == 0 || n > MAX_JOBS {
             return Err(ParamError {
@@ -385,13 +386,22 @@ impl Design {
                     message: format!("`{}` is varied twice (also by {})", v.key, w.origin),
                 });
             }
+        }
+        // Each probe of a key with the first probe of every other key (a key may need
+        // another one: --vary hs=… with --vary tp=…).
+        let firsts: Vec<Assignment> = varies
+            .iter()
+            .map(|v| Assignment {
+                origin: v.origin.clone(),
+                key: v.key.clone(),
+                value: v.dist.probes()[0].clone(),
+            })
+            .collect();
+        for (i, v) in varies.iter().enumerate() {
             for probe in v.dist.probes() {
-                let a = Assignment {
-                    origin: v.origin.clone(),
-                    key: v.key.clone(),
-                    value: probe.clone(),
-                };
-                resolve_with(&a).map_err(|e| Error::Set {
+                let mut with = firsts.clone();
+                with[i].value = probe.clone();
+                resolve_with(&with).map_err(|e| Error::Set {
                     origin: v.origin.clone(),
                     message: format!(
                         "the value {probe} does not give valid parameters: {}",
@@ -624,7 +634,7 @@ mod tests {
         assert!(err("spectrum=choice:jonswap||x").contains("non-empty"));
         let v = vec![Vary::parse("spectrum=choice:jonswap|foam").unwrap()];
         let e = Design::new(DesignKind::Random, 4, 1, v, |a| {
-            layers::resolve(None, std::slice::from_ref(a)).map(|_| ())
+            layers::resolve(None, a).map(|_| ())
         })
         .unwrap_err()
         .to_string();
