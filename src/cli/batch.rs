@@ -41,11 +41,13 @@ pub struct BatchArgs {
     pub merge_index: Vec<PathBuf>,
     // Random designs (`--sample N --vary KEY=DIST`).
     /// Draw N points of the --vary distributions, one job each (with --sweep, each point
-    /// runs the whole sweep; with a manifest, each of its jobs runs every point)
+    /// runs the whole sweep; with a manifest, each of its jobs runs every point); default:
+    /// no design
     #[arg(long, value_name = "N")]
     pub sample: Option<usize>,
     /// KEY=DIST over any --sweep key, DIST one of uniform:A:B, log-uniform:A:B,
-    /// normal:MEAN:SD, normal:MEAN:SD:MIN:MAX, int:A:B, choice:A|B|C
+    /// normal:MEAN:SD, normal:MEAN:SD:MIN:MAX, int:A:B, choice:A|B|C (repeatable; default:
+    /// none)
     #[arg(long, value_name = "KEY=DIST")]
     pub vary: Vec<String>,
     /// How the --sample points are drawn: random (each value independently) or lhs (Latin

@@ -36,7 +36,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<(Heights, ImageKind), Err
                         return Err(input_error(
                             path,
                             format!(
-                                "is a {} image of {bits}-bit integer samples without a height mapping (no sidecar, no seasynth text chunk): give --height-range MIN:MAX, the heights in meters of its darkest and brightest values",
+                                "is a {} image of {bits}-bit integer samples with no height mapping of its own (a sidecar for a 16-bit gray PNG, or a seasynth text chunk): give --height-range MIN:MAX, the heights in meters of its darkest and brightest values",
                                 crate::limits::format_name(r.format)
                             ),
                         ));
