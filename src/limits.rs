@@ -160,13 +160,21 @@ pub fn check_extension(path: &std::path::Path, format: image::ImageFormat) -> Re
 /// allocations are bounded (`image::Limits`: the memory available, at most 16 GiB). The
 /// message suits `FILE: message`.
 pub fn read_raster(path: &std::path::Path) -> Result<Raster, String> {
-    let open = || {
-        image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("cannot read: {e}"))
+    let open = || -> Result<image::ImageReader<std::io::BufReader<std::fs::File>>, String> {
+        let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+        Ok(image::ImageReader::new(std::io::BufReader::new(file)))
     };
-    let reader = open()?;
-    let Some(format) = reader.format().filter(|f| {
+    // The format by the first bytes only (`image` would fall back on the name).
+    let mut head = Vec::with_capacity(16);
+    std::io::Read::read_to_end(
+        &mut std::io::Read::take(
+            std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?,
+            16,
+        ),
+        &mut head,
+    )
+    .map_err(|e| format!("cannot read: {e}"))?;
+    let Some(format) = image::guess_format(&head).ok().filter(|f| {
         use image::ImageFormat as F;
         matches!(
             f,
@@ -178,6 +186,8 @@ pub fn read_raster(path: &std::path::Path) -> Result<Raster, String> {
         ));
     };
     check_extension(path, format)?;
+    let mut reader = open()?;
+    reader.set_format(format);
     let (w, h) = reader
         .into_dimensions()
         .map_err(|e| format!("not a readable {} image: {e}", format_name(format)))?;
@@ -187,6 +197,7 @@ pub fn read_raster(path: &std::path::Path) -> Result<Raster, String> {
     let available = available_memory().ok().flatten().unwrap_or(u64::MAX);
     limits.max_alloc = Some(available.min(16 << 30));
     let mut reader = open()?;
+    reader.set_format(format);
     reader.limits(limits);
     let img = reader
         .decode()

@@ -366,7 +366,11 @@ fn a_16_bit_png_without_sidecar_or_text_chunk_is_rejected_naming_the_height_rang
     assert_rejected(
         dir.path(),
         &["bare.png"],
-        &["bare.png", "16-bit integer samples", "--height-range MIN:MAX"],
+        &[
+            "bare.png",
+            "16-bit integer samples",
+            "--height-range MIN:MAX",
+        ],
     );
 }
 

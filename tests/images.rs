@@ -90,7 +90,11 @@ fn integer_images_of_every_format_read_through_the_height_range_and_the_extent()
         run_rejected(
             dir.path(),
             &["analyze", file],
-            &[file, "integer samples with no height mapping", "--height-range MIN:MAX"],
+            &[
+                file,
+                "integer samples with no height mapping",
+                "--height-range MIN:MAX",
+            ],
         );
     }
 }
