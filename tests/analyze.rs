@@ -334,7 +334,11 @@ fn a_missing_file_is_rejected_naming_it() {
 fn a_text_file_named_tif_is_rejected_naming_it() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("x.tif"), "just some text\n").unwrap();
-    assert_rejected(dir.path(), &["x.tif"], &["x.tif", "not a PNG or TIFF"]);
+    assert_rejected(
+        dir.path(),
+        &["x.tif"],
+        &["x.tif", "is not an image of a format read here"],
+    );
 }
 
 #[test]
@@ -350,23 +354,28 @@ fn a_truncated_tiff_is_rejected_naming_it() {
 }
 
 #[test]
-fn a_png_without_its_sidecar_is_rejected_naming_the_missing_sidecar() {
+fn a_16_bit_png_without_sidecar_or_text_chunk_is_rejected_naming_the_height_range() {
     let dir = tempfile::tempdir().unwrap();
-    generate(dir.path(), &["--size", "32", "-o", "sea.png"]);
-    std::fs::remove_file(dir.path().join("sea.json")).unwrap();
+    let path = dir.path().join("bare.png");
+    let mut enc = png::Encoder::new(std::fs::File::create(&path).unwrap(), 4, 4);
+    enc.set_color(png::ColorType::Grayscale);
+    enc.set_depth(png::BitDepth::Sixteen);
+    let mut w = enc.write_header().unwrap();
+    w.write_image_data(&[7u8; 32]).unwrap();
+    w.finish().unwrap();
     assert_rejected(
         dir.path(),
-        &["sea.png"],
+        &["bare.png"],
         &[
-            "sea.png",
-            "has no sidecar sea.json",
-            "cannot be converted to meters",
+            "bare.png",
+            "16-bit integer samples",
+            "--height-range MIN:MAX",
         ],
     );
 }
 
 #[test]
-fn an_8_bit_png_is_rejected_naming_it_even_with_a_sidecar() {
+fn an_8_bit_png_needs_the_height_range_even_with_a_sidecar() {
     let dir = tempfile::tempdir().unwrap();
     generate(dir.path(), &["--size", "32", "-o", "sea.png"]);
     let path = dir.path().join("gray8.png");
@@ -377,7 +386,11 @@ fn an_8_bit_png_is_rejected_naming_it_even_with_a_sidecar() {
     w.write_image_data(&[128u8; 16]).unwrap();
     w.finish().unwrap();
     std::fs::copy(dir.path().join("sea.json"), dir.path().join("gray8.json")).unwrap();
-    assert_rejected(dir.path(), &["gray8.png"], &["gray8.png", "16-bit"]);
+    assert_rejected(
+        dir.path(),
+        &["gray8.png"],
+        &["gray8.png", "8-bit integer samples", "--height-range"],
+    );
 }
 
 #[test]

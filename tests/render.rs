@@ -223,8 +223,8 @@ fn bad_camera_and_image_parameters_are_one_line_errors_with_exit_code_2() {
         a.extend_from_slice(extra);
         run_rejected(dir.path(), &a, fragments);
     }
-    // A name that is not a .png, and a missing height map.
-    run_rejected(dir.path(), &args(&["-o", "bad.jpg"]), &["bad.jpg", ".png"]);
+    // A name that is not a .png, .jpg or .webp, and a missing height map.
+    run_rejected(dir.path(), &args(&["-o", "bad.gif"]), &["bad.gif", ".png"]);
     run_rejected(
         dir.path(),
         &["render", "--from", "missing.tif", "-o", "bad.png"],

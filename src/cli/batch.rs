@@ -64,6 +64,24 @@ pub struct BatchArgs {
     /// index.json
     #[arg(long, value_name = "DIR", num_args = 1..)]
     pub merge_index: Vec<PathBuf>,
+    // Random designs (`--sample N --vary KEY=DIST`).
+    /// Draw N points of the --vary distributions, one job each (with --sweep, each point
+    /// runs the whole sweep; with a manifest, each of its jobs runs every point); default:
+    /// no design
+    #[arg(long, value_name = "N")]
+    pub sample: Option<usize>,
+    /// KEY=DIST over any --sweep key, DIST one of uniform:A:B, log-uniform:A:B,
+    /// normal:MEAN:SD, normal:MEAN:SD:MIN:MAX, int:A:B, choice:A|B|C (repeatable; default:
+    /// none)
+    #[arg(long, value_name = "KEY=DIST")]
+    pub vary: Vec<String>,
+    /// How the --sample points are drawn: random (each value independently) or lhs (Latin
+    /// hypercube: each of N equal-probability strata of every key hit once)
+    #[arg(long, value_name = "KIND", default_value = "random")]
+    pub design: String,
+    /// Seed of the design's draws (default: the batch's --seed)
+    #[arg(long, value_name = "S")]
+    pub design_seed: Option<String>,
     /// How meshes, raw height maps and tiles are written
     #[command(flatten)]
     pub export: ExportArgs,

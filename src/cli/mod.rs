@@ -187,10 +187,12 @@ pub struct GenerateArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub field: FieldArgs,
-    /// Render this height map instead: a float TIFF in meters, or a 16-bit PNG with its sidecar
+    /// Render this height map instead: a float TIFF in meters, a 16-bit PNG with its sidecar,
+    /// or any PNG, JPEG, TIFF, OpenEXR, BMP or WebP image (with --height-range MIN:MAX for
+    /// integer images without a mapping, --extent for the spacing)
     #[arg(long, value_name = "FILE")]
     pub from: Option<PathBuf>,
-    /// The image to write, an 8-bit sRGB PNG
+    /// The image to write, 8-bit sRGB: .png, .jpg (quality 90) or .webp (lossless)
     #[arg(short = 'o', long = "output", value_name = "PNG")]
     pub output: PathBuf,
     /// Image size in pixels (default 1280x720)

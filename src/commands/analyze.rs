@@ -11,7 +11,7 @@ use crate::config::Params;
 use crate::error::Error;
 use crate::export::Staged;
 use crate::grid::GridSpec;
-use crate::io::{ImageKind, load_detailed};
+use crate::io::{ImageKind, Loaded, ReadOptions, load_with};
 use crate::measure::{Analysis, Target, analyze};
 use crate::plot::analysis::{PLOT_SIZE, render_plot};
 
@@ -36,7 +36,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(|p| Staged::create_checked(p, &PLOTS, &[(&args.file, "is the file being analyzed")]))
         .transpose()?;
-    let loaded = load_detailed(&args.file)?;
+    let loaded = read_input(&args)?;
     let (target, note) = match &loaded.sidecar {
         Some(doc) => match target_from_sidecar(doc, &loaded.grid.spec) {
             Ok(t) => (Some(t), None),
@@ -77,6 +77,13 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The height map of `analyze FILE`: any image read, with `--height-range` for integer
+/// images without a mapping and `--extent` for the spacing.
+fn read_input(args: &AnalyzeArgs) -> Result<Loaded, Error> {
+    let opts = ReadOptions::parse(args.height_range.as_deref(), args.extent.as_deref())?;
+    load_with(&args.file, &opts)
+}
+
 fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
     match v {
         Some(v) => format!("{v:.digits$}{unit}"),
@@ -88,10 +95,7 @@ fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
 fn human_report(r: &Report) -> String {
     let a = r.analysis;
     let mut s = String::new();
-    let kind = match r.format {
-        ImageKind::Png16 => "16-bit PNG",
-        ImageKind::TiffF32 => "float TIFF",
-    };
+    let kind = r.format.describe();
     s += &format!(
         "{}: {kind}, {}×{} samples, spacing {} m × {} m ({}), extent {} m × {} m\n",
         r.file, a.nx, a.ny, a.dx_m, a.dy_m, r.spacing_source, a.extent_m[0], a.extent_m[1]

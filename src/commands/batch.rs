@@ -23,6 +23,7 @@ use crate::export::options::ExportOptions;
 use crate::export::sidecar::JobRecord;
 use crate::export::{Format, HeightMapping, OutputKind, Staged};
 use crate::field::Synthesis;
+use crate::pipeline::batch::design;
 use crate::pipeline::batch::files::{complete_files, hash_hex, remove_stale_temporaries, suffixes};
 use crate::pipeline::batch::index::{self, Index, Row, Status};
 use crate::pipeline::batch::plan::{
@@ -157,6 +158,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
     } else {
         manifest.jobs.clone()
     };
+    // Random designs: each drawn point is a job entry, its values its assignments.
+    let entries = design_entries(&args, entries, preset.as_deref(), &base, &sweeps)?;
     let specs = plan::product(&entries, &sweeps)?;
     let mut keys: Vec<String> = Vec::new();
     for k in entries
@@ -590,6 +593,66 @@ pub fn run(args: BatchArgs) -> Result<()> {
         .into());
     }
     Ok(())
+}
+
+/// The job entries of a random design (`--sample N --vary KEY=DIST`): each of `entries`
+/// once per drawn point, or `entries` as they are without a design. Checked before any
+/// file is written: the design seed defaults to the seed of the batch's base parameters.
+fn design_entries(
+    args: &BatchArgs,
+    entries: Vec<JobSpec>,
+    preset: Option<&str>,
+    base: &[Assignment],
+    sweeps: &[Sweep],
+) -> Result<Vec<JobSpec>> {
+    let kind = design::DesignKind::parse(&args.design)?;
+    let Some(n) = args.sample else {
+        if let Some(v) = args.vary.first() {
+            return Err(Error::Set {
+                origin: format!("--vary {v}"),
+                message: "--vary needs --sample N, the number of points to draw".into(),
+            }
+            .into());
+        }
+        if args.design_seed.is_some() || kind != design::DesignKind::Random {
+            return Err(Error::Set {
+                origin: "--design".into(),
+                message: "--design and --design-seed need --sample N and --vary KEY=DIST".into(),
+            }
+            .into());
+        }
+        return Ok(entries);
+    };
+    let varies = args
+        .vary
+        .iter()
+        .map(|v| design::Vary::parse(v))
+        .collect::<crate::error::Result<Vec<_>>>()?;
+    let seed = match &args.design_seed {
+        Some(s) => s.trim().parse::<u64>().map_err(|_| {
+            Error::Param(ParamError {
+                name: "--design-seed".into(),
+                allowed: "a whole number from 0 to 18446744073709551615".into(),
+                got: s.clone(),
+            })
+        })?,
+        None => layers::resolve(preset, base)?.seed,
+    };
+    // The design's values are checked with the first job's other values.
+    let mut first = base.to_vec();
+    first.extend(entries[0].assignments.iter().cloned());
+    first.extend(sweeps.iter().map(|s| Assignment {
+        origin: s.origin.clone(),
+        key: s.key.clone(),
+        value: s.values[0].clone(),
+    }));
+    let preset = entries[0].preset.as_deref().or(preset);
+    let design = design::Design::new(kind, n, seed, varies, |a| {
+        let mut with = first.clone();
+        with.extend(a.iter().cloned());
+        layers::resolve(preset, &with).map(|_| ())
+    })?;
+    Ok(design.entries(&entries)?)
 }
 
 /// The index row of a job complete from an earlier run ([`complete_files`]).

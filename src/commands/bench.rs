@@ -365,6 +365,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         println!("{maps_cost}");
         trochoid_rows(n, repeats, bare)?;
     }
+    noise_bases(repeats);
     if args.exports {
         exports(&args.dir, repeats.min(3))?;
     }
@@ -412,6 +413,50 @@ fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
         params.trochoid.components
     );
     Ok(())
+}
+
+/// Grid side of the noise-basis table.
+const NOISE_N: usize = 256;
+
+/// The noise bases side by side: CPU nanoseconds per sample per octave (every thread's
+/// time, so one core's cost) of the builtin kernel and of each noise-rs source under fBm,
+/// plane (2D) and tileable (4D torus), 6 octaves on a 256² grid, and each as a ratio to
+/// the builtin kernel (tileable, as by default).
+fn noise_bases(repeats: usize) {
+    use crate::config::{NoiseBasis, NoiseFractal};
+    let params = bench_params(NOISE_N);
+    let spec = params.grid_spec();
+    let base = field::perlin_params(&params);
+    let per = |d: Duration| d.as_secs_f64() * 1e9 / (spec.len() as f64 * base.octaves as f64);
+    println!(
+        "\nnoise bases, fBm of {} octaves at {NOISE_N}²: CPU ns per sample per octave (ratio to builtin)",
+        base.octaves
+    );
+    println!(
+        "  {:<16} {:>12} {:>16}",
+        "basis", "plane (2D)", "tileable (4D)"
+    );
+    let mut builtin = 0.0;
+    for basis in NoiseBasis::ALL {
+        let mut cell = |tileable: bool| {
+            if tileable && basis == NoiseBasis::SuperSimplex {
+                return "-".to_string();
+            }
+            let pp = perlin::PerlinParams { tileable, ..base };
+            let ns = per(time_cpu(repeats, || {
+                perlin::noise_field(&spec, &pp, 0.0, basis, NoiseFractal::Fbm)
+            })
+            .1);
+            if basis == NoiseBasis::Builtin && tileable {
+                builtin = ns;
+            }
+            let ratio = if builtin > 0.0 { ns / builtin } else { 1.0 };
+            format!("{ns:.1} ({ratio:.1}×)")
+        };
+        let tiled = cell(true);
+        let plane = cell(false);
+        println!("  {:<16} {:>12} {:>16}", basis.name(), plane, tiled);
+    }
 }
 
 /// Times the mesh exports of periodic FFT fields: a 2048² OBJ and GLB (normals from

@@ -266,16 +266,20 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
         .as_ref()
         .map(|_| "--preset")
         .or((!f.set.is_empty()).then_some("--set"))
-        .or(f.flags().first().map(|(k, _)| *k))
+        .or(f
+            .flags()
+            .into_iter()
+            .map(|(k, _)| k)
+            .find(|k| !FROM_FLAGS.contains(k)))
     {
         return Err(err(
             "--from",
-            "given without field flags (the file is the field)",
+            "given without field flags but --extent and --height-range (the file is the field)",
             format!("{} with {flag}", from.display()),
         )
         .into());
     }
-    let (grid, sidecar) = crate::io::load(from)?;
+    let (grid, sidecar) = read_from(from, f)?;
     let params: Option<Params> = sidecar
         .as_ref()
         .and_then(|d| d.get("params"))
@@ -290,10 +294,23 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
     })
 }
 
+/// The field flags that describe a `--from` file rather than a field.
+const FROM_FLAGS: [&str; 2] = ["extent", "height-range"];
+
+/// The height map of `--from`: any image read, with `--height-range` for integer images
+/// without a mapping and `--extent` for the spacing.
+fn read_from(
+    from: &std::path::Path,
+    f: &crate::cli::FieldArgs,
+) -> Result<(Grid, Option<serde_json::Value>), Error> {
+    let opts = crate::io::ReadOptions::parse(f.height_range.as_deref(), f.extent.as_deref())?;
+    crate::io::load_with(from, &opts).map(|l| (l.grid, l.sidecar))
+}
+
 /// The files `render -o` writes.
 const PREVIEWS: Allowed = Allowed {
-    what: "previews are 8-bit RGB PNG images",
-    extensions: &["png"],
+    what: "previews are 8-bit RGB PNG, JPEG or WebP images",
+    extensions: &["png", "jpg", "jpeg", "webp"],
 };
 
 /// Runs `seasynth render`.
@@ -336,7 +353,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let image = crate::render::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    crate::export::rgb8::write(staged, &image.rgb, (image.width, image.height))?;
+    crate::export::rgb8::write_by_name(staged, &image.rgb, (image.width, image.height))?;
     if !args.quiet {
         let [x, y, z] = camera.position_m;
         eprintln!(

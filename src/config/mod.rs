@@ -286,6 +286,94 @@ pub struct PerlinConfig {
     pub tileable: bool,
     /// Height of the normalized noise for `--method perlin`, meters (the field is in [−1, 1]·amplitude_m).
     pub amplitude_m: f64,
+    /// The noise: `builtin` (seasynth's periodic gradient noise) or a noise-rs source.
+    #[serde(skip_serializing_if = "NoiseBasis::is_builtin")]
+    pub basis: NoiseBasis,
+    /// How octaves combine (noise-rs bases only; `builtin` is fBm).
+    #[serde(skip_serializing_if = "NoiseFractal::is_fbm")]
+    pub fractal: NoiseFractal,
+}
+
+/// The noise of the Perlin field.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NoiseBasis {
+    /// seasynth's own periodic 2D gradient noise (Li Tian eq. 9).
+    #[default]
+    Builtin,
+    /// noise-rs `Perlin` (gradient noise).
+    Perlin,
+    /// noise-rs `OpenSimplex`.
+    OpenSimplex,
+    /// noise-rs `SuperSimplex` (2D only: not tileable).
+    SuperSimplex,
+    /// noise-rs `Value` (interpolated lattice values).
+    Value,
+    /// noise-rs `Worley` (cellular: the value of the nearest feature point's cell).
+    Worley,
+}
+
+impl NoiseBasis {
+    pub const ALL: [NoiseBasis; 6] = [
+        NoiseBasis::Builtin,
+        NoiseBasis::Perlin,
+        NoiseBasis::OpenSimplex,
+        NoiseBasis::SuperSimplex,
+        NoiseBasis::Value,
+        NoiseBasis::Worley,
+    ];
+
+    fn is_builtin(&self) -> bool {
+        *self == NoiseBasis::Builtin
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            NoiseBasis::Builtin => "builtin",
+            NoiseBasis::Perlin => "perlin",
+            NoiseBasis::OpenSimplex => "open-simplex",
+            NoiseBasis::SuperSimplex => "super-simplex",
+            NoiseBasis::Value => "value",
+            NoiseBasis::Worley => "worley",
+        }
+    }
+}
+
+/// How the octaves of a noise-rs basis combine (noise-rs's fractal combinators).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NoiseFractal {
+    /// Fractal Brownian motion: the sum of the octaves.
+    #[default]
+    Fbm,
+    /// The sum of |octave| (billowy: rounded crests, sharp troughs).
+    Billow,
+    /// Ridged multifractal: 1 − |octave|, each octave weighted by the last (sharp ridges).
+    RidgedMulti,
+    /// Hybrid multifractal: smooth valleys, rough peaks.
+    HybridMulti,
+}
+
+impl NoiseFractal {
+    pub const ALL: [NoiseFractal; 4] = [
+        NoiseFractal::Fbm,
+        NoiseFractal::Billow,
+        NoiseFractal::RidgedMulti,
+        NoiseFractal::HybridMulti,
+    ];
+
+    fn is_fbm(&self) -> bool {
+        *self == NoiseFractal::Fbm
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            NoiseFractal::Fbm => "fbm",
+            NoiseFractal::Billow => "billow",
+            NoiseFractal::RidgedMulti => "ridged-multi",
+            NoiseFractal::HybridMulti => "hybrid-multi",
+        }
+    }
 }
 
 /// Which axis a ramp runs along.
@@ -323,9 +411,32 @@ pub enum AlphaConfig {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         radius_m: Option<f64>,
     },
-    /// α from a grayscale PNG (8 or 16 bit; white = 1), resampled bilinearly to the grid;
-    /// image row 0 is y = 0, as in every output.
-    Image { path: PathBuf },
+    /// α from an image (PNG, JPEG, TIFF, OpenEXR, BMP or WebP; gray, or color by its
+    /// luma; white = 1, float samples as stored and clamped to [0, 1]), resampled
+    /// bilinearly to the grid; image row 0 is y = 0, as in every output. An image whose
+    /// aspect ratio differs from the extent's is refused unless `fit = "stretch"`.
+    Image {
+        path: PathBuf,
+        #[serde(default, skip_serializing_if = "AlphaFit::is_match")]
+        fit: AlphaFit,
+    },
+}
+
+/// How an α image meets the grid.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AlphaFit {
+    /// The image's aspect ratio must be the extent's (within a pixel).
+    #[default]
+    Match,
+    /// The image is stretched over the extent whatever its aspect ratio.
+    Stretch,
+}
+
+impl AlphaFit {
+    fn is_match(&self) -> bool {
+        *self == AlphaFit::Match
+    }
 }
 
 fn one() -> f64 {
@@ -427,6 +538,8 @@ impl Default for PerlinConfig {
             wavelength_m: 64.0,
             tileable: true,
             amplitude_m: 1.0,
+            basis: NoiseBasis::Builtin,
+            fractal: NoiseFractal::Fbm,
         }
     }
 }

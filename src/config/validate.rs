@@ -1,7 +1,7 @@
 //! Validation of [`Params`]: every value checked once, where parameters are resolved; a
 //! valid `Params` can always be synthesized.
 
-use super::{AlphaConfig, Beta, Method, Params, Range2, SpectrumModel};
+use super::{AlphaConfig, Beta, Method, NoiseBasis, NoiseFractal, Params, Range2, SpectrumModel};
 use crate::error::ParamError;
 
 /// Largest samples per side, and in all (the memory of one field stays under 4 GiB).
@@ -208,6 +208,20 @@ impl Params {
         }
         positive("perlin.wavelength_m", " m", p.wavelength_m)?;
         non_negative("perlin.amplitude_m", " m", p.amplitude_m)?;
+        if p.basis == NoiseBasis::Builtin && p.fractal != NoiseFractal::Fbm {
+            return Err(err(
+                "perlin.fractal",
+                "fbm with perlin.basis = builtin (billow, ridged-multi and hybrid-multi need a noise-rs basis: perlin, open-simplex, super-simplex, value or worley)",
+                p.fractal.name(),
+            ));
+        }
+        if p.basis == NoiseBasis::SuperSimplex && p.tileable {
+            return Err(err(
+                "perlin.tileable",
+                "false with perlin.basis = super-simplex (it has no 4D form to tile on)",
+                p.tileable,
+            ));
+        }
         match &self.blend.alpha {
             AlphaConfig::Constant { value } => {
                 if !(0.0..=1.0).contains(value) {
@@ -229,11 +243,11 @@ impl Params {
                     positive("blend.alpha.radius_m", " m", *r)?;
                 }
             }
-            AlphaConfig::Image { path } => {
+            AlphaConfig::Image { path, .. } => {
                 if !path.is_file() {
                     return Err(err(
                         "blend.alpha.path",
-                        "an existing PNG file",
+                        "an existing image file",
                         path.display(),
                     ));
                 }

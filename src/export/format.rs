@@ -51,7 +51,7 @@ pub enum OutputKind {
     Height(Format),
     /// A map of the wave state, in its usual image format or as EXR.
     Map(MapKind, MapEncoding),
-    /// A shaded perspective view (8-bit RGB PNG).
+    /// A shaded perspective view (8-bit RGB PNG, JPEG or WebP).
     Preview,
 }
 
@@ -92,7 +92,7 @@ const INNER: &[Inner] = &[
     },
     Inner {
         name: "preview",
-        outer: &["png"],
+        outer: &["png", "jpg", "jpeg", "webp"],
         kind: OutputKind::Preview,
         strict: false,
     },

@@ -1,4 +1,5 @@
-//! 8-bit RGB PNG of a rendered image (plots), written through a staged file.
+//! 8-bit RGB images (plots, maps, previews), written through a staged file: PNG, or for
+//! previews JPEG (quality 90) or lossless WebP by the file name, through `image`.
 
 use super::Staged;
 use crate::error::Error;
@@ -15,4 +16,31 @@ pub fn write(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error
             .map_err(std::io::Error::other)?;
         writer.finish().map_err(std::io::Error::other)
     })
+}
+
+/// JPEG quality of previews.
+pub const JPEG_QUALITY: u8 = 90;
+
+/// Encodes an RGB buffer as the staged file's name asks: `.jpg`/`.jpeg` (JPEG, quality
+/// [`JPEG_QUALITY`]), `.webp` (lossless WebP), else PNG ([`write`]).
+pub fn write_by_name(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
+    let ext = staged
+        .path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or_default()
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "jpg" | "jpeg" => staged.write_with(|out| {
+            image::codecs::jpeg::JpegEncoder::new_with_quality(out, JPEG_QUALITY)
+                .encode(rgb, w, h, image::ExtendedColorType::Rgb8)
+                .map_err(std::io::Error::other)
+        }),
+        "webp" => staged.write_with(|out| {
+            image::codecs::webp::WebPEncoder::new_lossless(out)
+                .encode(rgb, w, h, image::ExtendedColorType::Rgb8)
+                .map_err(std::io::Error::other)
+        }),
+        _ => write(staged, rgb, (w, h)),
+    }
 }

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::config::{AlphaConfig, Axis};
+use crate::config::{AlphaConfig, AlphaFit, Axis};
 use crate::error::{Error, Result};
 use crate::grid::GridSpec;
 
@@ -74,10 +74,16 @@ impl AlphaMap {
                         .into(),
                 });
             }
-            AlphaConfig::Image { path } => AlphaMap::Sampled {
-                nx: spec.nx,
-                values: resample(&read_gray(path)?, spec.nx, spec.ny),
-            },
+            AlphaConfig::Image { path, fit } => {
+                let img = read_gray(path)?;
+                if *fit == AlphaFit::Match {
+                    check_aspect(path, &img, spec)?;
+                }
+                AlphaMap::Sampled {
+                    nx: spec.nx,
+                    values: resample(&img, spec.nx, spec.ny),
+                }
+            }
         })
     }
 
@@ -118,56 +124,55 @@ pub struct GrayImage {
     pub values: Vec<f32>,
 }
 
-/// Reads a PNG as gray values in [0, 1]: 1–16-bit gray, gray + alpha (alpha ignored), or
-/// RGB(A) by Rec. 709 luma; palettes are expanded.
+/// Reads an image as gray values in [0, 1] through `image` (`limits::read_raster`): any
+/// format read there, gray or color by its Rec. 709 luma (alpha ignored), integer samples
+/// as a fraction of their largest value, float samples clamped to [0, 1].
 pub fn read_gray(path: &Path) -> Result<GrayImage> {
     let bad = |message: String| Error::Input {
         path: path.to_path_buf(),
         message,
     };
-    let file = std::fs::File::open(path).map_err(|e| bad(format!("cannot open α image: {e}")))?;
-    let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
-    decoder.set_transformations(png::Transformations::EXPAND);
-    let mut reader = decoder
-        .read_info()
-        .map_err(|e| bad(format!("not a readable PNG: {e}")))?;
-    let (w, h) = reader.info().size();
-    crate::limits::check_image_size(w as u64, h as u64, 8).map_err(&bad)?;
-    let size = reader
-        .output_buffer_size()
-        .ok_or_else(|| bad("PNG dimensions too large".into()))?;
-    let mut buf = vec![0u8; size];
-    let info = reader
-        .next_frame(&mut buf)
-        .map_err(|e| bad(format!("not a readable PNG: {e}")))?;
-    let (w, h) = (info.width as usize, info.height as usize);
-    if w == 0 || h == 0 {
-        return Err(bad("PNG has no pixels".into()));
+    let r = crate::limits::read_raster(path).map_err(|m| bad(format!("α image: {m}")))?;
+    if let Some(i) = r.values.iter().position(|v| !v.is_finite()) {
+        return Err(bad(format!(
+            "α image sample (x {}, row {}) is {}: α must be finite",
+            i % r.width,
+            i / r.width,
+            r.values[i]
+        )));
     }
-    let channels = info.color_type.samples();
-    let wide = info.bit_depth == png::BitDepth::Sixteen;
-    let sample = |idx: usize| -> f32 {
-        if wide {
-            u16::from_be_bytes([buf[2 * idx], buf[2 * idx + 1]]) as f32 / 65535.0
-        } else {
-            buf[idx] as f32 / 255.0
-        }
+    let values = match r.integer_bits {
+        Some(_) => r.values,
+        None => r.values.into_iter().map(|v| v.clamp(0.0, 1.0)).collect(),
     };
-    let values = (0..w * h)
-        .map(|p| {
-            let base = p * channels;
-            if channels >= 3 {
-                0.2126 * sample(base) + 0.7152 * sample(base + 1) + 0.0722 * sample(base + 2)
-            } else {
-                sample(base)
-            }
-        })
-        .collect();
     Ok(GrayImage {
-        width: w,
-        height: h,
+        width: r.width,
+        height: r.height,
         values,
     })
+}
+
+/// Refuses an image whose aspect ratio is not the extent's, within a pixel on either side.
+fn check_aspect(path: &Path, img: &GrayImage, spec: &GridSpec) -> Result<()> {
+    let (w, h) = (img.width as f64, img.height as f64);
+    let (ex, ey) = (spec.extent_x_m, spec.extent_y_m);
+    if (h - w * ey / ex).abs() <= 1.0 || (w - h * ex / ey).abs() <= 1.0 {
+        return Ok(());
+    }
+    Err(Error::Param(crate::error::ParamError {
+        name: "blend.alpha.path".into(),
+        allowed: format!(
+            "an image of the extent's aspect ratio, {ex} m × {ey} m ({:.4}), or blend.alpha.fit = \"stretch\"",
+            ex / ey
+        ),
+        got: format!(
+            "{}: {}×{} pixels ({:.4})",
+            path.display(),
+            img.width,
+            img.height,
+            w / h
+        ),
+    }))
 }
 
 /// Bilinear resampling with pixel centers aligned (an image of the grid's size is copied

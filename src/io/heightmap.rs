@@ -1,5 +1,7 @@
-//! Reading height maps: a float TIFF in meters, or a 16-bit PNG with its sidecar's
-//! mapping; the kind of file told by its first bytes, the spacing by the sidecar.
+//! Reading height maps: a float TIFF in meters, a 16-bit PNG with its sidecar's mapping,
+//! or any other image through `image` ([`super::raster`]); the kind of file told by its
+//! first bytes (a name that says another image format is refused), the spacing by
+//! `--extent`, else the sidecar, else 1 m.
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -7,7 +9,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use serde_json::Value;
 
-use super::{HeightReader, Heights, READERS, input_error};
+use super::{HeightReader, Heights, READERS, ReadOptions, input_error};
 use crate::error::Error;
 use crate::grid::{Grid, GridSpec};
 
@@ -19,6 +21,30 @@ pub enum ImageKind {
     Png16,
     /// One-channel 32-bit float TIFF in meters.
     TiffF32,
+    /// Any other PNG (8-bit, color, or 16-bit without a sidecar).
+    Png,
+    Jpeg,
+    /// A TIFF other than one float channel (8/16-bit, color, float RGB).
+    Tiff,
+    Exr,
+    Bmp,
+    Webp,
+}
+
+impl ImageKind {
+    /// The kind in words, for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            ImageKind::Png16 => "16-bit PNG",
+            ImageKind::TiffF32 => "float TIFF",
+            ImageKind::Png => "PNG",
+            ImageKind::Jpeg => "JPEG",
+            ImageKind::Tiff => "TIFF",
+            ImageKind::Exr => "OpenEXR",
+            ImageKind::Bmp => "BMP",
+            ImageKind::Webp => "WebP",
+        }
+    }
 }
 
 /// A height map as read, with what was learned reading it.
@@ -32,9 +58,9 @@ pub struct Loaded {
     pub quantization_step_m: Option<f64>,
 }
 
-/// The reader of the file at `path`, picked by its first bytes.
-fn sniff(path: &Path) -> Result<&'static dyn HeightReader, Error> {
-    let mut head = [0u8; 8];
+/// The first bytes of `path` (up to 16), refusing folders and empty files.
+fn head_of(path: &Path) -> Result<Vec<u8>, Error> {
+    let mut head = [0u8; 16];
     let mut file =
         std::fs::File::open(path).map_err(|e| input_error(path, format!("cannot read: {e}")))?;
     if path.is_dir() {
@@ -49,20 +75,54 @@ fn sniff(path: &Path) -> Result<&'static dyn HeightReader, Error> {
             Err(e) => return Err(input_error(path, format!("cannot read: {e}"))),
         }
     }
-    let head = &head[..got];
-    if head.is_empty() {
+    if got == 0 {
         return Err(input_error(path, "is empty, not a height map"));
     }
-    READERS
-        .iter()
-        .copied()
-        .find(|r| r.sniff(head))
-        .ok_or_else(|| {
-            input_error(
-                path,
-                "is not a PNG or TIFF image (expected a 32-bit float TIFF in meters or a 16-bit PNG with its sidecar)",
-            )
-        })
+    Ok(head[..got].to_vec())
+}
+
+/// seasynth's own reader of `path` when it applies: a 16-bit grayscale PNG with a
+/// sidecar, or a one-channel float TIFF (or a TIFF whose header does not read, for its
+/// message); None for any other image.
+fn own_reader(path: &Path, head: &[u8], has_sidecar: bool) -> Option<&'static dyn HeightReader> {
+    let reader = READERS.iter().copied().find(|r| r.sniff(head))?;
+    let applies = match reader.kind() {
+        ImageKind::Png16 => has_sidecar && png_is_gray16(path),
+        _ => tiff_is_float_gray(path),
+    };
+    applies.then_some(reader)
+}
+
+fn png_is_gray16(path: &Path) -> bool {
+    let Ok(file) = std::fs::File::open(path) else {
+        return true;
+    };
+    match png::Decoder::new(std::io::BufReader::new(file)).read_info() {
+        Ok(r) => {
+            let info = r.info();
+            info.bit_depth == png::BitDepth::Sixteen && info.color_type == png::ColorType::Grayscale
+        }
+        Err(_) => true,
+    }
+}
+
+fn tiff_is_float_gray(path: &Path) -> bool {
+    let Ok(file) = std::fs::File::open(path) else {
+        return true;
+    };
+    let Ok(mut dec) = tiff::decoder::Decoder::new(std::io::BufReader::new(file)) else {
+        return true;
+    };
+    let float = dec
+        .find_tag_unsigned_vec::<u16>(tiff::tags::Tag::SampleFormat)
+        .ok()
+        .flatten()
+        .is_some_and(|v| v.iter().all(|&f| f == 3));
+    match dec.colortype() {
+        Ok(tiff::ColorType::Gray(32)) => float,
+        Ok(_) => false,
+        Err(_) => true,
+    }
 }
 
 /// The sidecar of `path` (same folder and stem, `.json`), if there is a file of that name.
@@ -123,14 +183,26 @@ fn sidecar_spacing(
 
 /// Reads a height map and its sidecar, if any (see the module docs).
 pub fn load_detailed(path: &Path) -> Result<Loaded, Error> {
-    let reader = sniff(path)?;
+    load_with(path, &ReadOptions::default())
+}
+
+/// Reads a height map and its sidecar, if any, with what the command line says of it.
+pub fn load_with(path: &Path, opts: &ReadOptions) -> Result<Loaded, Error> {
+    let head = head_of(path)?;
+    if let Ok(format) = image::guess_format(&head) {
+        crate::limits::check_extension(path, format).map_err(|m| input_error(path, m))?;
+    }
     let sidecar = read_sidecar(path)?;
+    let (heights, kind) = match own_reader(path, &head, sidecar.is_some()) {
+        Some(reader) => (reader.read(path, sidecar.as_ref())?, reader.kind()),
+        None => super::raster::read(path, opts)?,
+    };
     let Heights {
         nx,
         ny,
         data,
         quantization_step_m: step,
-    } = reader.read(path, sidecar.as_ref())?;
+    } = heights;
     if nx == 0 || ny == 0 || data.len() != nx * ny {
         return Err(input_error(path, format!("has no samples ({nx}×{ny})")));
     }
@@ -149,17 +221,19 @@ pub fn load_detailed(path: &Path) -> Result<Loaded, Error> {
         Some((side, doc)) => sidecar_spacing(side, doc, nx, ny)?,
         None => None,
     };
-    let (dx, dy) = spacing.unwrap_or((1.0, 1.0));
-    let spec = GridSpec::new(nx, ny, dx * nx as f64, dy * ny as f64);
+    let (spec, spacing_source) = match (opts.extent_m, spacing) {
+        (Some((ex, ey)), _) => (GridSpec::new(nx, ny, ex, ey), "--extent"),
+        (None, Some((dx, dy))) => (
+            GridSpec::new(nx, ny, dx * nx as f64, dy * ny as f64),
+            "sidecar",
+        ),
+        (None, None) => (GridSpec::new(nx, ny, nx as f64, ny as f64), "assumed 1 m"),
+    };
     Ok(Loaded {
         grid: Grid::new(spec, data),
         sidecar: sidecar.map(|(_, d)| d),
-        kind: reader.kind(),
-        spacing_source: if spacing.is_some() {
-            "sidecar"
-        } else {
-            "assumed 1 m"
-        },
+        kind,
+        spacing_source,
         quantization_step_m: step,
     })
 }

@@ -297,7 +297,7 @@ pub fn write_field(
             }
             None => {
                 let img = crate::pipeline::preview::preview_of(params, &synthesis)?;
-                export::rgb8::write(staged, &img.rgb, (img.width, img.height))?;
+                export::rgb8::write_by_name(staged, &img.rgb, (img.width, img.height))?;
             }
         }
     }

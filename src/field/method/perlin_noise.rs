@@ -1,4 +1,5 @@
-//! The `perlin` method: multi-octave Perlin fBm alone (Li Tian eq. 9), scaled to meters.
+//! The `perlin` method: multi-octave Perlin fBm alone (Li Tian eq. 9), or a noise-rs
+//! basis and fractal (`perlin.basis`, `perlin.fractal`), scaled to meters.
 
 use super::{HeightMethod, finish};
 use crate::config::Params;
@@ -49,12 +50,13 @@ impl HeightMethod for PerlinNoise {
     fn prepare(&mut self, _keep_draws: bool) -> Result<()> {
         let spec = self.spec();
         let pp = perlin_params(&self.params);
+        let cfg = &self.params.perlin;
         let info = SynthesisInfo {
-            perlin_wavelengths_m: perlin::octave_wavelengths(&spec, &pp),
+            perlin_wavelengths_m: perlin::basis_wavelengths(&spec, &pp, cfg.basis),
             ..SynthesisInfo::default()
         };
         let offset = self.params.grid.sample_at.offset();
-        let noise = perlin::perlin_field_offset(&spec, &pp, offset);
+        let noise = perlin::noise_field(&spec, &pp, offset, cfg.basis, cfg.fractal);
         self.ready = Some((noise, info));
         Ok(())
     }

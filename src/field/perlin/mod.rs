@@ -32,9 +32,45 @@
 //! [`perlin_at`] uses the very same operations as [`perlin_field`], so they agree exactly at
 //! grid points.
 
+pub mod noise_rs;
 mod params;
 
 pub use params::{PerlinParams, octave_cells, octave_wavelengths};
+
+/// The noise field of `basis` under `fractal`: the builtin kernel ([`perlin_field`], fBm
+/// only) or a noise-rs generator ([`noise_rs::noise_rs_field`]); in [−1, 1] either way.
+pub fn noise_field(
+    spec: &GridSpec,
+    p: &PerlinParams,
+    offset: f64,
+    basis: crate::config::NoiseBasis,
+    fractal: crate::config::NoiseFractal,
+) -> Vec<f32> {
+    match basis {
+        crate::config::NoiseBasis::Builtin => perlin_field_offset(spec, p, offset),
+        _ => noise_rs::noise_rs_field(spec, p, offset, basis, fractal),
+    }
+}
+
+/// The wavelengths of the octaves (x, y) in meters: the builtin kernel's, rounded to
+/// divide the extent when tileable, or λ0/lacunarity^i of a noise-rs basis (whose
+/// tileable form is periodic without rounding).
+pub fn basis_wavelengths(
+    spec: &GridSpec,
+    p: &PerlinParams,
+    basis: crate::config::NoiseBasis,
+) -> Vec<(f64, f64)> {
+    match basis {
+        crate::config::NoiseBasis::Builtin => octave_wavelengths(spec, p),
+        _ => octave_wavelengths(
+            spec,
+            &PerlinParams {
+                tileable: false,
+                ..*p
+            },
+        ),
+    }
+}
 
 use crate::grid::GridSpec;
 use crate::simd::{Isa, multiversion};

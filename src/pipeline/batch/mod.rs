@@ -1,6 +1,7 @@
 //! Batches: the plan of jobs (sweeps, manifests, shards, items, name templates), the
 //! shard a scheduler's task runs, and the index of what every job wrote.
 
+pub mod design;
 pub mod files;
 pub mod index;
 pub mod plan;
