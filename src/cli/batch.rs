@@ -80,7 +80,7 @@ pub struct BatchArgs {
     #[arg(long, value_name = "KIND", default_value = "random")]
     pub design: String,
     /// Seed of the design's draws (default: the batch's --seed)
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub design_seed: Option<String>,
     /// How meshes, raw height maps and tiles are written
     #[command(flatten)]
