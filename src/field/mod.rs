@@ -50,6 +50,9 @@ pub struct SynthesisInfo {
     /// Perlin lattice spacing per octave actually used, meters (x, y).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub perlin_wavelengths_m: Vec<(f64, f64)>,
+    /// The second-order pairs of `--nonlinear second-order`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_order: Option<fft::second_order::SecondOrderInfo>,
     /// The trochoid method's components and fitted turbulence.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trochoid: Option<trochoid::TrochoidInfo>,
