@@ -207,11 +207,9 @@ fn wave_report(w: &WaveStats, hs: f64) -> String {
         opt(w.crests.forristall_alpha, 4, ""),
         opt(w.crests.forristall_beta, 4, "")
     );
-    s += "  P(C > c):  c/Hs  measured  Rayleigh  Forristall\n";
-    for e in w.crests.exceedance.iter().filter(|e| e.level_hs >= 0.4) {
+    if let Some(e) = w.crests.exceedance.iter().find(|e| e.level_hs == 0.8) {
         s += &format!(
-            "            {:.1}   {:.5}   {:.5}   {}\n",
-            e.level_hs,
+            "  P(C > 0.8 Hs): measured {:.5}, Rayleigh {:.5}, Forristall {} (--json for the table)\n",
             e.measured,
             e.rayleigh,
             opt(e.forristall, 5, "")

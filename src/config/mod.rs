@@ -113,7 +113,7 @@ impl Nonlinear {
 
 /// The fraction of the spectrum's variance the second-order pairs are formed from, when
 /// not given.
-pub const DEFAULT_NONLINEAR_FRACTION: f64 = 0.999;
+pub const DEFAULT_NONLINEAR_FRACTION: f64 = 0.99;
 
 /// Every parameter of a run. Missing keys take the defaults of the `li-tian` preset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
