@@ -2,6 +2,8 @@
 //! with Hasselmann spreading, each seed generated linear and second-order (the same free
 //! waves), so the differences show the bound waves alone.
 
+mod common;
+
 use seasynth::config::Params;
 use seasynth::config::layers::{Assignment, apply};
 use seasynth::field::synthesize;
@@ -129,4 +131,58 @@ fn linear_is_the_default_and_second_order_needs_fft_and_no_choppiness() {
             .unwrap_or_else(|| panic!("{set} with second-order must be refused"));
         assert!(e.to_string().contains(name), "{set}: {e}");
     }
+}
+
+#[test]
+fn second_order_loops_and_refuses_choppiness_from_the_command_line() {
+    // With a loop period T, ω_i ± ω_j are multiples of 2π/T: the field at t + T is the
+    // field at t, bit for bit; the second-order field differs from the linear one.
+    let mut sets = BASE.to_vec();
+    sets.extend([
+        "size=64",
+        "extent=1024",
+        "nonlinear=second-order",
+        "loop-period=20",
+    ]);
+    let p = params(&sets);
+    let at = |t: f64| {
+        let q = Params {
+            time_s: t,
+            ..p.clone()
+        };
+        synthesize(&q).unwrap().grid.data
+    };
+    let (a, b, c) = (at(3.0), at(23.0), at(4.0));
+    assert_eq!(a, b, "t and t + T");
+    assert_ne!(a, c);
+    let lin = Params {
+        time_s: 3.0,
+        spectrum: seasynth::config::SpectrumParams {
+            nonlinear: seasynth::config::Nonlinear::Linear,
+            ..p.spectrum.clone()
+        },
+        ..p.clone()
+    };
+    assert_ne!(synthesize(&lin).unwrap().grid.data, a);
+    let dir = tempfile::tempdir().unwrap();
+    let err = common::run_exit2(
+        dir.path(),
+        &[
+            "generate",
+            "--method",
+            "fft",
+            "--spectrum",
+            "pierson-moskowitz",
+            "--nonlinear",
+            "second-order",
+            "--choppiness",
+            "1",
+            "--size",
+            "32",
+            "-o",
+            "x.tif",
+        ],
+    );
+    assert!(err.contains("--choppiness"), "{err}");
+    assert!(common::names_in(dir.path()).is_empty(), "no file left");
 }

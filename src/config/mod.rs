@@ -234,7 +234,7 @@ pub struct SpectrumParams {
     #[serde(skip_serializing_if = "Nonlinear::is_linear")]
     pub nonlinear: Nonlinear,
     /// The linear components of the second-order pairs: the strongest ones that carry
-    /// this fraction of the variance (0 < q ≤ 1; default 0.999).
+    /// this fraction of the variance (0 < q ≤ 1; default 0.99).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nonlinear_fraction: Option<f64>,
 }
