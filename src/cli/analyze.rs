@@ -22,4 +22,12 @@ pub struct AnalyzeArgs {
     /// Write a log-log plot of the measured (and target) radial spectrum S(k), 800×500 PNG
     #[arg(long, value_name = "PNG")]
     pub plot: Option<PathBuf>,
+    /// Write the crest and wave-height exceedance against Rayleigh and Forristall (2000),
+    /// 800×500 PNG (default: none)
+    #[arg(long, value_name = "PNG")]
+    pub plot_waves: Option<PathBuf>,
+    /// A second height map whose crest exceedance --plot-waves draws beside the first
+    /// (e.g. the linear sea of the same seed; default: none)
+    #[arg(long, value_name = "FILE", requires = "plot_waves")]
+    pub compare: Option<PathBuf>,
 }

@@ -109,6 +109,9 @@ pub struct FieldArgs {
     /// Seamless loop period, s: every ω becomes the nearest non-zero multiple of 2π/T
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub loop_period: Option<String>,
+    /// Sea theory of --method fft: linear (default) or second-order (adds the bound waves)
+    #[arg(long, value_name = "ORDER")]
+    pub nonlinear: Option<String>,
     /// Choppy waves: horizontal displacement factor λ (0: none; 1: trochoid-like)
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
     pub choppiness: Option<String>,
@@ -150,6 +153,7 @@ impl FieldArgs {
             ("time", &self.time),
             ("height-range", &self.height_range),
             ("loop-period", &self.loop_period),
+            ("nonlinear", &self.nonlinear),
             ("choppiness", &self.choppiness),
             ("foam-threshold", &self.foam_threshold),
             ("fps", &self.fps),

@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::export::Staged;
 use crate::grid::GridSpec;
 use crate::io::{ImageKind, Loaded, ReadOptions, load_with};
+use crate::measure::waves::{SeaContext, WaveStats, wave_statistics};
 use crate::measure::{Analysis, Target, analyze};
 use crate::plot::analysis::{PLOT_SIZE, render_plot};
 
@@ -25,6 +26,8 @@ struct Report<'a> {
     quantization_step_m: Option<f64>,
     #[serde(flatten)]
     analysis: &'a Analysis,
+    /// Wave-by-wave statistics.
+    waves: &'a WaveStats,
 }
 
 /// Runs `seasynth analyze`.
@@ -47,17 +50,31 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
             Some("no sidecar, so there is no target spectrum".to_string()),
         ),
     };
+    let plot_waves = args
+        .plot_waves
+        .as_deref()
+        .map(|p| Staged::create_checked(p, &PLOTS, &[(&args.file, "is the file being analyzed")]))
+        .transpose()?;
     let mut analysis = analyze(&loaded.grid, target.as_ref());
     if analysis.target_note.is_none() {
         analysis.target_note = note;
     }
+    let waves = wave_statistics(
+        &loaded.grid,
+        &analysis,
+        &sea_context(loaded.sidecar.as_ref()),
+    );
     let report = Report {
         file: args.file.display().to_string(),
         format: loaded.kind,
         spacing_source: loaded.spacing_source,
         quantization_step_m: loaded.quantization_step_m,
         analysis: &analysis,
+        waves: &waves,
     };
+    if let Some(staged) = plot_waves {
+        write_wave_plot(staged, &args, &report)?;
+    }
     if let Some(staged) = plot {
         let name = args
             .file
@@ -73,6 +90,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         std::io::Write::write_all(&mut out, b"\n")?;
     } else {
         std::io::Write::write_all(&mut out, human_report(&report).as_bytes())?;
+        std::io::Write::write_all(&mut out, wave_report(&waves, analysis.hs_m).as_bytes())?;
     }
     Ok(())
 }
@@ -80,8 +98,13 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
 /// The height map of `analyze FILE`: any image read, with `--height-range` for integer
 /// images without a mapping and `--extent` for the spacing.
 fn read_input(args: &AnalyzeArgs) -> Result<Loaded, Error> {
+    read_file(&args.file, args)
+}
+
+/// Reads `path` with the input flags of `args` (`--height-range`, `--extent`).
+fn read_file(path: &std::path::Path, args: &AnalyzeArgs) -> Result<Loaded, Error> {
     let opts = ReadOptions::parse(args.height_range.as_deref(), args.extent.as_deref())?;
-    load_with(&args.file, &opts)
+    load_with(path, &opts)
 }
 
 fn opt(v: Option<f64>, digits: usize, unit: &str) -> String {
@@ -145,6 +168,95 @@ fn human_report(r: &Report) -> String {
         a.dk_rad_per_m
     );
     s
+}
+
+/// What the wave statistics take from a sidecar's `params`: the wind speed and the depth.
+fn sea_context(sidecar: Option<&Value>) -> SeaContext {
+    let params = sidecar
+        .and_then(|d| d.get("params"))
+        .and_then(|p| serde_json::from_value::<Params>(p.clone()).ok());
+    match params {
+        Some(p) => SeaContext {
+            wind_speed_mps: Some(p.wind.speed_mps),
+            depth_m: p.spectrum.depth_m,
+        },
+        None => SeaContext::default(),
+    }
+}
+
+/// The wave statistics' lines of the text report.
+fn wave_report(w: &WaveStats, hs: f64) -> String {
+    let mut s = String::new();
+    s += &format!(
+        "surface: skewness {:.4}, kurtosis {:.4} (Gaussian 0, 3), fraction above 3σ {:.5} (Gaussian {:.5})\n",
+        w.skewness, w.kurtosis, w.exceed_3sigma, w.exceed_3sigma_gaussian
+    );
+    s += &format!(
+        "mean-square slope {:.5}, Cox–Munk clean surface {} (the grid resolves only part of it)\n",
+        w.mean_square_slope,
+        opt(w.cox_munk_mss, 5, "")
+    );
+    s += &format!(
+        "zero-crossing waves along {} transects at {:.1}°: {} waves, H1/3 {} ({} Hs), Hmax {}\n",
+        w.transects,
+        w.transect_direction_deg,
+        w.waves.count,
+        opt(w.waves.h_third_m, 3, " m"),
+        opt(w.waves.h_third_over_hs, 3, ""),
+        opt(w.waves.h_max_m, 3, " m")
+    );
+    s += &format!(
+        "crests: {}, Cmax {} ({} Hs); S1 {}, Ur {}, Tm01 {}; Forristall α {}, β {}\n",
+        w.crests.count,
+        opt(w.crests.c_max_m, 3, " m"),
+        opt(w.crests.c_max_m.filter(|_| hs > 0.0).map(|c| c / hs), 3, ""),
+        opt(w.crests.steepness_s1, 4, ""),
+        opt(w.crests.ursell, 4, ""),
+        opt(w.crests.mean_period_tm01_s, 2, " s"),
+        opt(w.crests.forristall_alpha, 4, ""),
+        opt(w.crests.forristall_beta, 4, "")
+    );
+    if let Some(e) = w.crests.exceedance.iter().find(|e| e.level_hs == 0.8) {
+        s += &format!(
+            "  P(C > 0.8 Hs): measured {:.5}, Rayleigh {:.5}, Forristall {} (--json for the table)\n",
+            e.measured,
+            e.rayleigh,
+            opt(e.forristall, 5, "")
+        );
+    }
+    s
+}
+
+/// Draws `--plot-waves`: the crest and height exceedance of the report (and of the
+/// `--compare` file's crests).
+fn write_wave_plot(staged: Staged, args: &AnalyzeArgs, r: &Report) -> anyhow::Result<()> {
+    let name = args
+        .file
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| r.file.clone());
+    let other = match &args.compare {
+        Some(path) => {
+            // The other file is read with the same options: its mapping and spacing.
+            let loaded = read_file(path, args)?;
+            let a = analyze(&loaded.grid, None);
+            let w = wave_statistics(&loaded.grid, &a, &sea_context(loaded.sidecar.as_ref()));
+            let n = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            Some((n, w))
+        }
+        None => None,
+    };
+    let image = crate::plot::waves::render_wave_plot(
+        r.waves,
+        &name,
+        other.as_ref().map(|(n, w)| (n.as_str(), w)),
+    )
+    .map_err(|e| Error::io(&staged.path, e))?;
+    crate::export::rgb8::write(staged, &image, crate::plot::waves::WAVE_PLOT_SIZE)?;
+    Ok(())
 }
 
 /// The methods whose fields follow their spectrum model as a whole, so that a measured

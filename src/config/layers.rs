@@ -27,6 +27,7 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("hs", "spectrum.hs_m"),
     ("tp", "spectrum.tp_s"),
     ("gamma", "spectrum.gamma"),
+    ("nonlinear", "spectrum.nonlinear"),
     ("height-range", "output.height_range"),
     ("loop-period", "motion.loop_period_s"),
     ("choppiness", "motion.choppiness"),

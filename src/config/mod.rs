@@ -94,6 +94,27 @@ pub enum SpreadingName {
     DonelanBanner,
 }
 
+/// The order of the sea's theory (`fft` method only).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Nonlinear {
+    /// Free waves only: Gaussian statistics.
+    #[default]
+    Linear,
+    /// Free waves plus their second-order bound waves (Sharma–Dean kernels).
+    SecondOrder,
+}
+
+impl Nonlinear {
+    pub fn is_linear(&self) -> bool {
+        *self == Nonlinear::Linear
+    }
+}
+
+/// The fraction of the spectrum's variance the second-order pairs are formed from, when
+/// not given.
+pub const DEFAULT_NONLINEAR_FRACTION: f64 = 0.99;
+
 /// Every parameter of a run. Missing keys take the defaults of the `li-tian` preset.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -246,6 +267,13 @@ pub struct SpectrumParams {
     pub tp_s: Option<f64>,
     /// JONSWAP peak enhancement γ ≥ 1.
     pub gamma: f64,
+    /// `linear` (free waves) or `second-order` (free and bound waves; `fft` method).
+    #[serde(skip_serializing_if = "Nonlinear::is_linear")]
+    pub nonlinear: Nonlinear,
+    /// The linear components of the second-order pairs: the strongest ones that carry
+    /// this fraction of the variance (0 < q ≤ 1; default 0.99).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nonlinear_fraction: Option<f64>,
 }
 
 /// The `fractal` spectrum (terrain).
@@ -525,6 +553,8 @@ impl Default for SpectrumParams {
             hs_m: None,
             tp_s: None,
             gamma: 3.3,
+            nonlinear: Nonlinear::Linear,
+            nonlinear_fraction: None,
         }
     }
 }

@@ -274,8 +274,55 @@ impl Params {
                 self.motion.choppiness,
             ));
         }
+        self.validate_nonlinear()?;
         self.validate_sea()?;
         self.bounded().iter().try_for_each(check_bounded)
+    }
+
+    /// `spectrum.nonlinear = second-order`: the `fft` method of a physical spectrum,
+    /// without choppiness; the fraction in (0, 1].
+    fn validate_nonlinear(&self) -> Result<(), ParamError> {
+        use super::Nonlinear;
+        const KEY: &str = "--nonlinear (spectrum.nonlinear)";
+        if let Some(q) = self.spectrum.nonlinear_fraction {
+            if !(q > 0.0 && q <= 1.0) {
+                return Err(err(
+                    "spectrum.nonlinear_fraction",
+                    "a fraction of the variance, 0 < q <= 1",
+                    q,
+                ));
+            }
+        }
+        if self.spectrum.nonlinear == Nonlinear::Linear {
+            return Ok(());
+        }
+        if self.method != Method::Fft {
+            return Err(err(
+                KEY,
+                "linear unless --method fft (second-order seas are built on the FFT spectrum)",
+                "second-order",
+            ));
+        }
+        if matches!(
+            self.spectrum.model,
+            SpectrumModel::Phillips | SpectrumModel::Fractal
+        ) {
+            return Err(err(
+                KEY,
+                "linear with the phillips and fractal spectra (second-order needs a physical \
+                 sea: pierson-moskowitz, jonswap or tma)",
+                "second-order",
+            ));
+        }
+        if self.motion.choppiness != 0.0 {
+            return Err(err(
+                "--choppiness (motion.choppiness)",
+                "0 with --nonlinear second-order (the bound waves already shape the crests; \
+                 a displacement of them has no consistent second-order meaning)",
+                self.motion.choppiness,
+            ));
+        }
+        Ok(())
     }
 
     /// The grid these parameters describe.

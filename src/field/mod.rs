@@ -37,6 +37,10 @@ pub struct SynthesisInfo {
     /// The physical model's peak period 1/fp, seconds.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub model_tp_s: Option<f64>,
+    /// How the physical model's level was set (from the wind, or to --hs with the depth
+    /// factor included).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spectrum_scaling: Option<String>,
     /// Phillips' largest wave L = V²/g, meters.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub phillips_largest_wave_m: Option<f64>,
@@ -46,6 +50,9 @@ pub struct SynthesisInfo {
     /// Perlin lattice spacing per octave actually used, meters (x, y).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub perlin_wavelengths_m: Vec<(f64, f64)>,
+    /// The second-order pairs of `--nonlinear second-order`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_order: Option<fft::second_order::SecondOrderInfo>,
     /// The trochoid method's components and fitted turbulence.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trochoid: Option<trochoid::TrochoidInfo>,
@@ -57,6 +64,7 @@ impl SynthesisInfo {
         if let Some(sea) = sea {
             self.model_hs_m = Some(sea.freq.hs_m());
             self.model_tp_s = Some(1.0 / sea.freq.peak_hz());
+            self.spectrum_scaling = Some(sea.freq.scaling().to_string());
         }
     }
 
@@ -139,7 +147,9 @@ pub fn sea_model(params: &Params) -> Result<Option<SeaModel>> {
             Box::new(PiersonMoskowitz::from_hs_tp(h, t)?)
         }
         (SpectrumModel::Jonswap, None) => Box::new(Jonswap::from_wind_fetch(u, fetch_m, s.gamma)?),
-        (SpectrumModel::Jonswap, Some((h, t))) => Box::new(Jonswap::from_hs_tp(h, t, s.gamma)?),
+        (SpectrumModel::Jonswap, Some((h, t))) => {
+            Box::new(Jonswap::from_hs_tp_exact(h, t, s.gamma)?)
+        }
         (SpectrumModel::Tma, hs_tp) => {
             let depth = s.depth_m.expect("validated: tma has a depth");
             Box::new(match hs_tp {

@@ -3,6 +3,7 @@
 
 pub mod slopes;
 pub mod spectrum;
+pub mod waves;
 
 pub use spectrum::{
     Analysis, COMPARE_FLOOR, NORMALIZATION, RadialBin, Target, TargetSummary, analyze, same_length,

@@ -3,6 +3,7 @@
 
 pub mod analysis;
 pub mod spectrum;
+pub mod waves;
 
 /// The chart layout both log–log plots share: margins and label areas, in pixels.
 fn log_log_chart<'a, 'b, DB: plotters::prelude::DrawingBackend>(

@@ -23,6 +23,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::{Complex, Complex32};
 
 mod inverse;
+pub mod second_order;
 mod shift;
 
 pub use inverse::InverseFft2;

@@ -3,10 +3,11 @@
 
 use super::spectral::Spectral;
 use super::{HeightMethod, finish};
-use crate::config::Params;
+use crate::config::{DEFAULT_NONLINEAR_FRACTION, Nonlinear, Params};
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::{Extras, Surface};
+use crate::field::fft::second_order::{SecondOrder, SecondOrderInfo};
 use crate::field::fft::{self, Amplitudes};
 use crate::grid::Grid;
 
@@ -21,6 +22,8 @@ struct Ready {
     spectral: Spectral,
     /// The random draws, when kept between frames.
     amplitudes: Option<Amplitudes>,
+    /// The paired components of a second-order sea.
+    second_order: Option<SecondOrder>,
 }
 
 impl FftSea {
@@ -33,19 +36,27 @@ impl FftSea {
 
     /// The heights (resampled when choppy), the derived fields `extras` asks for, and
     /// h0max = max |h̃0(k)|, meters.
-    pub(super) fn field(&self, time_s: f64, extras: Extras) -> (Grid, Surface, f64) {
+    pub(super) fn field(
+        &self,
+        time_s: f64,
+        extras: Extras,
+    ) -> (Grid, Surface, f64, Option<SecondOrderInfo>) {
         let ready = self
             .ready
             .as_ref()
             .expect("prepared before the first frame");
         let setup = ready.spectral.setup(time_s);
-        let half = match &ready.amplitudes {
+        let mut half = match &ready.amplitudes {
             Some(a) => a.frame(&setup),
             None => fft::synthesize_spectrum(&setup),
         };
+        let bound = ready
+            .second_order
+            .as_ref()
+            .map(|so| so.add_to(&setup, &mut half));
         let h0max_m = half.h0max_m;
         let (grid, surface) = ready.spectral.heights(half, extras);
-        (grid, surface, h0max_m)
+        (grid, surface, h0max_m, bound)
     }
 
     /// What the sidecar records of the spectrum model (after `prepare`).
@@ -62,22 +73,34 @@ impl HeightMethod for FftSea {
     fn prepare(&mut self, keep_draws: bool) -> Result<()> {
         let spectral = Spectral::new(&self.params)?;
         let amplitudes = keep_draws.then(|| Amplitudes::new(&spectral.setup(0.0)));
+        let s = &self.params.spectrum;
+        let second_order = (s.nonlinear == Nonlinear::SecondOrder).then(|| {
+            let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
+            SecondOrder::new(&spectral.setup(0.0), q)
+        });
         self.ready = Some(Ready {
             spectral,
             amplitudes,
+            second_order,
         });
         Ok(())
     }
 
     fn frame(&self, time_s: f64, extras: Extras) -> Synthesis {
-        let (grid, surface, h0max_m) = self.field(time_s, extras);
+        let (grid, surface, h0max_m, bound) = self.field(time_s, extras);
         let mut info = self.info().clone();
         info.h0max_m = Some(h0max_m);
+        info.second_order = bound;
         finish(grid, info, surface, extras, true, true)
     }
 
     fn bytes_per_sample(&self) -> u64 {
-        10
+        // A second-order sea adds its full-plane bound spectrum (complex f64).
+        if self.params.spectrum.nonlinear.is_linear() {
+            10
+        } else {
+            26
+        }
     }
 
     fn is_periodic(&self) -> bool {

@@ -1,8 +1,8 @@
 //! The JONSWAP spectrum of a fetch-limited sea.
 
 use super::{
-    FETCH, FrequencySpectrum, G, HS, JonswapShape, PM_PEAK_COEF, TP, TWO_PI, WIND_SPEED,
-    check_gamma, param, positive,
+    FETCH, FrequencySpectrum, G, HS, JonswapShape, PM_PEAK_COEF, SCALED_DNV, SCALED_GIVEN,
+    SCALED_HS, SCALED_WIND, TP, TWO_PI, WIND_SPEED, check_gamma, param, positive,
 };
 use crate::error::ParamError;
 use crate::fastmath::{exp, ln};
@@ -13,6 +13,7 @@ pub struct Jonswap {
     pub(super) shape: JonswapShape,
     pub(super) hs_m: f64,
     pub(super) fetch_m: Option<f64>,
+    pub(super) scaling: &'static str,
 }
 
 impl Jonswap {
@@ -24,14 +25,20 @@ impl Jonswap {
         Ok(Self::from_shape(
             JonswapShape::new(alpha * G * G / TWO_PI.powi(4), fp_hz, gamma, f64::INFINITY),
             None,
+            SCALED_GIVEN,
         ))
     }
 
-    fn from_shape(shape: JonswapShape, fetch_m: Option<f64>) -> Self {
+    pub(super) fn from_shape(
+        shape: JonswapShape,
+        fetch_m: Option<f64>,
+        scaling: &'static str,
+    ) -> Self {
         Self {
             shape,
             hs_m: 4.0 * shape.m0_numeric().sqrt(),
             fetch_m,
+            scaling,
         }
     }
 
@@ -62,6 +69,7 @@ impl Jonswap {
         Ok(Self::from_shape(
             JonswapShape::new(a, omega_p / TWO_PI, gamma, f64::INFINITY),
             Some(fetch),
+            SCALED_WIND,
         ))
     }
 
@@ -80,6 +88,7 @@ impl Jonswap {
         Ok(Self::from_shape(
             JonswapShape::new(a, fp, gamma, f64::INFINITY),
             None,
+            SCALED_DNV,
         ))
     }
 
@@ -95,6 +104,7 @@ impl Jonswap {
         Ok(Self::from_shape(
             JonswapShape::new(a, fp, gamma, f64::INFINITY),
             None,
+            SCALED_HS,
         ))
     }
 
@@ -125,5 +135,8 @@ impl FrequencySpectrum for Jonswap {
     }
     fn shape(&self) -> Option<JonswapShape> {
         Some(self.shape)
+    }
+    fn scaling(&self) -> &'static str {
+        self.scaling
     }
 }

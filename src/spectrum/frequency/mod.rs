@@ -48,7 +48,26 @@ pub trait FrequencySpectrum: Send + Sync + std::fmt::Debug {
     fn shape(&self) -> Option<JonswapShape> {
         None
     }
+    /// How the model's level was set (one of the `SCALED_*` texts), for the sidecar.
+    fn scaling(&self) -> &'static str {
+        SCALED_GIVEN
+    }
 }
+
+/// The level (α) was given directly.
+pub const SCALED_GIVEN: &str = "alpha and peak frequency given";
+/// The level and peak came from the wind (and fetch) laws.
+pub const SCALED_WIND: &str = "alpha and peak from the wind (and fetch) laws";
+/// α was set so that 4·√m0 of the spectrum used equals --hs.
+pub const SCALED_HS: &str = "alpha set so that 4*sqrt(m0) = hs";
+/// TMA from wind and fetch: the JONSWAP of the fetch laws times the depth factor (Hs is
+/// the model's, below the deep-water sea's).
+pub const SCALED_WIND_DEPTH: &str =
+    "alpha and peak from the wind and fetch laws, then times the depth factor";
+/// TMA from --hs: α set with the depth factor included, so 4·√m0 = hs in the shallow sea.
+pub const SCALED_HS_DEPTH: &str = "alpha set so that 4*sqrt(m0) = hs, depth factor included";
+/// DNV-RP-C205's A_γ: 4·√m0 only approximately hs.
+pub const SCALED_DNV: &str = "DNV A_gamma = 1 - 0.287 ln(gamma): 4*sqrt(m0) approximately hs";
 
 fn param(name: &str, allowed: &str, got: impl std::fmt::Display) -> ParamError {
     ParamError {

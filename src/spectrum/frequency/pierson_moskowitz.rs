@@ -1,8 +1,8 @@
 //! The Pierson–Moskowitz spectrum of a fully developed sea.
 
 use super::{
-    FrequencySpectrum, G, HS, JonswapShape, PM_ALPHA, PM_PEAK_COEF, TP, TWO_PI, WIND_SPEED,
-    positive,
+    FrequencySpectrum, G, HS, JonswapShape, PM_ALPHA, PM_PEAK_COEF, SCALED_GIVEN, SCALED_HS,
+    SCALED_WIND, TP, TWO_PI, WIND_SPEED, positive,
 };
 use crate::error::ParamError;
 
@@ -10,6 +10,7 @@ use crate::error::ParamError;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PiersonMoskowitz {
     pub(super) shape: JonswapShape,
+    scaling: &'static str,
 }
 
 impl PiersonMoskowitz {
@@ -19,13 +20,18 @@ impl PiersonMoskowitz {
         positive("spectrum peak frequency", " Hz", fm_hz)?;
         Ok(Self {
             shape: JonswapShape::new(alpha * G * G / TWO_PI.powi(4), fm_hz, 1.0, f64::INFINITY),
+            scaling: SCALED_GIVEN,
         })
     }
 
     /// α = 0.0081, fm = 0.13 g / U10; U10 > 0 m/s.
     pub fn from_wind(u10_mps: f64) -> Result<Self, ParamError> {
         positive(WIND_SPEED, " m/s", u10_mps)?;
-        Self::new(PM_ALPHA, PM_PEAK_COEF * G / u10_mps)
+        let pm = Self::new(PM_ALPHA, PM_PEAK_COEF * G / u10_mps)?;
+        Ok(Self {
+            scaling: SCALED_WIND,
+            ..pm
+        })
     }
 
     /// The PM shape with fm = 1/Tp and α such that 4√m0 = Hs exactly (DNV-RP-C205:
@@ -38,6 +44,7 @@ impl PiersonMoskowitz {
         let fp2 = fp * fp;
         Ok(Self {
             shape: JonswapShape::new(5.0 / 16.0 * hs_m * hs_m * fp2 * fp2, fp, 1.0, f64::INFINITY),
+            scaling: SCALED_HS,
         })
     }
 
@@ -65,5 +72,8 @@ impl FrequencySpectrum for PiersonMoskowitz {
     }
     fn shape(&self) -> Option<JonswapShape> {
         Some(self.shape)
+    }
+    fn scaling(&self) -> &'static str {
+        self.scaling
     }
 }

@@ -292,3 +292,68 @@ fn invalid_parameters_name_the_parameter() {
     );
     assert!(Tma::new(j, f64::NAN).is_err());
 }
+
+/// 4·√m0 of `s` by a direct trapezoid integral of its density in ln f (independent of
+/// the shape's own quadrature).
+fn hs_direct(s: &dyn FrequencySpectrum) -> f64 {
+    let fp = s.peak_hz();
+    let (lo, hi, n) = ((fp / 20.0).ln(), (fp * 200.0).ln(), 200_000);
+    let h = (hi - lo) / n as f64;
+    let m0: f64 = (0..=n)
+        .map(|i| {
+            let x = lo + h * i as f64;
+            let w = if i == 0 || i == n { 0.5 } else { 1.0 };
+            w * s.density(x.exp()) * x.exp() * h
+        })
+        .sum();
+    4.0 * m0.sqrt()
+}
+
+#[test]
+fn hs_means_hs_for_every_spectrum_given_hs_and_tp() {
+    // The spectrum actually used, the TMA's depth factor included, has 4·√m0 = --hs: the
+    // model's own value to the numerical m0 (1e-9), a direct integral of its density to
+    // HS_DIRECT (the truncated tail above 200 fp holds ~1e-9 of m0 and the trapezoid is
+    // far finer).
+    const HS_MODEL: f64 = 1e-9;
+    const HS_DIRECT: f64 = 1e-6;
+    let (hs, tp) = (2.5, 9.0);
+    let mut seas: Vec<(String, Box<dyn FrequencySpectrum>)> = vec![
+        (
+            "pm".into(),
+            Box::new(PiersonMoskowitz::from_hs_tp(hs, tp).unwrap()),
+        ),
+        (
+            "jonswap".into(),
+            Box::new(Jonswap::from_hs_tp_exact(hs, tp, 3.3).unwrap()),
+        ),
+    ];
+    for depth in [2.0, 5.0, 15.0, 40.0, 200.0] {
+        for gamma in [1.0, 3.3, 7.0] {
+            seas.push((
+                format!("tma d {depth} γ {gamma}"),
+                Box::new(Tma::from_hs_tp(hs, tp, gamma, depth).unwrap()),
+            ));
+        }
+    }
+    for (name, s) in &seas {
+        assert!(
+            rel(s.hs_m(), hs) < HS_MODEL,
+            "{name}: model Hs {}",
+            s.hs_m()
+        );
+        let direct = hs_direct(s.as_ref());
+        assert!(rel(direct, hs) < HS_DIRECT, "{name}: 4√m0 {direct}");
+        assert!(s.scaling().contains("hs"), "{name}: {}", s.scaling());
+    }
+    // The depth factor is inside the scaling: at 15 m the TMA's α is above the deep
+    // JONSWAP's (a user asking for 2.5 m no longer gets 1.72 m).
+    let deep = Jonswap::from_hs_tp_exact(hs, tp, 3.3).unwrap();
+    let shallow = Tma::from_hs_tp(hs, tp, 3.3, 15.0).unwrap();
+    assert!(shallow.jonswap().alpha() > 1.5 * deep.alpha());
+    assert_eq!(shallow.scaling(), SCALED_HS_DEPTH);
+    // From the wind the depth factor still lowers Hs, and the sidecar text says so.
+    let wind = Tma::from_wind_fetch(15.0, 100e3, 3.3, 15.0).unwrap();
+    assert!(wind.hs_m() < wind.jonswap().hs_m());
+    assert_eq!(wind.scaling(), SCALED_WIND_DEPTH);
+}

@@ -1,6 +1,9 @@
 //! The TMA spectrum: JONSWAP in water of finite depth.
 
-use super::{DEPTH, FrequencySpectrum, Jonswap, JonswapShape, kitaigorodskii, param};
+use super::{
+    DEPTH, FrequencySpectrum, Jonswap, JonswapShape, SCALED_HS_DEPTH, SCALED_WIND,
+    SCALED_WIND_DEPTH, kitaigorodskii, param,
+};
 use crate::error::ParamError;
 
 /// JONSWAP in water of depth d: F_TMA(f) = F_JONSWAP(f) · Φ(2πf √(d/g)).
@@ -38,9 +41,21 @@ impl Tma {
         Self::new(Jonswap::from_wind_fetch(u10_mps, fetch_m, gamma)?, depth_m)
     }
 
-    /// [`Jonswap::from_hs_tp`] (the deep-water Hs and Tp) in water of depth `depth_m`.
+    /// The TMA of JONSWAP shape (fp = 1/Tp, γ) in water of depth `depth_m` whose own
+    /// 4·√m0, the depth factor included, is `hs_m`: α is set after the depth factor (m0 is
+    /// linear in α), so the sea a user asks for by Hs has that Hs. (The TMA's peak moves a
+    /// little above fp in shallow water; [`peak_hz`](FrequencySpectrum::peak_hz) reports it.)
     pub fn from_hs_tp(hs_m: f64, tp_s: f64, gamma: f64, depth_m: f64) -> Result<Self, ParamError> {
-        Self::new(Jonswap::from_hs_tp(hs_m, tp_s, gamma)?, depth_m)
+        let deep = Jonswap::from_hs_tp_exact(hs_m, tp_s, gamma)?;
+        let shallow = Self::new(deep, depth_m)?;
+        let j = deep.shape;
+        let scale = (hs_m / shallow.hs_m).powi(2);
+        let scaled = Jonswap::from_shape(
+            JonswapShape::new(j.a * scale, j.fp_hz, j.gamma, f64::INFINITY),
+            None,
+            SCALED_HS_DEPTH,
+        );
+        Self::new(scaled, depth_m)
     }
 
     pub fn jonswap(&self) -> &Jonswap {
@@ -71,5 +86,11 @@ impl FrequencySpectrum for Tma {
     }
     fn shape(&self) -> Option<JonswapShape> {
         Some(self.shape)
+    }
+    fn scaling(&self) -> &'static str {
+        match self.jonswap.scaling {
+            SCALED_WIND => SCALED_WIND_DEPTH,
+            s => s,
+        }
     }
 }

@@ -6,8 +6,8 @@
 //!   p = 9.77 (f/fm)^μ, μ = 4.06 below fm, −2.34 from fm up (fm = the spectrum's peak),
 //!   N_p = 2^{1−2p} π Γ(2p+1)/Γ(p+1)² = 2√π Γ(p+½)/Γ(p+1) = ∫cos^{2p}(θ/2) dθ.
 //! - `Mitsuyasu` (1975): cos^{2s}(θ/2) / N_s, s = s_max (f/fp)⁵ below fp,
-//!   s_max (f/fp)^{−2.5} from fp up, s_max = 11.5 (U10/c_p)^{2.5}, c_p = g/(2π fp)
-//!   (U10 < 0 counts as 0).
+//!   s_max (f/fp)^{−2.5} from fp up, s_max = 11.5 (U10/c_p)^{−2.5}, c_p = g/(2π fp)
+//!   (U10 ≤ 0 gives s_max = 0).
 //! - `DonelanBanner` (1985): D = β/(2 tanh βπ) · sech²(βθ), θ wrapped to (−π, π], with
 //!   r = f/fp: β = 2.61 r^{1.3} for r < 0.95, 2.28 r^{−1.3} for 0.95 ≤ r < 1.6,
 //!   10^{−0.4 + 0.8393 exp(−0.567 ln r²)} from 1.6 up. Below r = 0.56 (outside the fit's
@@ -386,14 +386,34 @@ mod tests {
 
     #[test]
     fn mitsuyasu_s_by_hand() {
-        // U = 15, fp = 0.1 Hz: c_p = 9.81/(0.2π) = 15.613 m/s, s_max = 11.5·(15/15.613)^2.5.
+        // U = 15, fp = 0.1 Hz: c_p = 9.81/(0.2π) = 15.613 m/s, s_max = 11.5·(15/15.613)^−2.5.
         let smax = mitsuyasu_s_max(15.0, 0.1);
         let cp = G / (TWO_PI * 0.1);
-        assert!(rel(smax, 11.5 * (15.0 / cp).powf(2.5)) < 1e-13);
-        assert!(rel(smax, 10.404) < 1e-3, "s_max {smax}");
+        assert!(rel(smax, 11.5 * (15.0 / cp).powf(-2.5)) < 1e-13);
+        assert!(rel(smax, 12.711) < 1e-3, "s_max {smax}");
         assert!(rel(mitsuyasu_s(0.05, 0.1, smax), smax / 32.0) < 1e-13);
         assert!(rel(mitsuyasu_s(0.4, 0.1, smax), smax / 32.0) < 1e-13);
         assert_eq!(mitsuyasu_s_max(-1.0, 0.1), 0.0);
+    }
+
+    #[test]
+    fn mitsuyasu_s_max_at_two_wave_ages() {
+        // Mitsuyasu et al. (1975): s_max = 11.5 (ω_p U10/g)^−2.5 = 11.5 (U10/c_p)^−2.5.
+        // A fully developed sea (U10/c_p = 0.82) spreads narrowly, s_max ≈ 18.9; a young
+        // sea (U10/c_p = 2) broadly, s_max ≈ 2.03. Older seas spread narrower.
+        const TOL: f64 = 1e-12;
+        let u = 12.0;
+        let mut last = f64::INFINITY;
+        for (age, want) in [(0.82, 18.887_0), (2.0, 2.032_93)] {
+            let cp = u / age;
+            let fp = G / (TWO_PI * cp);
+            let got = mitsuyasu_s_max(u, fp);
+            let formula = 11.5 * (TWO_PI * fp * u / G).powf(-2.5);
+            assert!(rel(got, formula) < TOL, "U/c_p {age}: {got} vs {formula}");
+            assert!(rel(got, want) < 1e-4, "U/c_p {age}: {got} vs {want}");
+            assert!(got < last, "s_max must fall as U/c_p grows");
+            last = got;
+        }
     }
 
     #[test]

@@ -1,0 +1,476 @@
+//! Second-order random seas: the bound waves of every pair of free waves (Longuet-Higgins
+//! 1963; Sharma & Dean 1981, in the form of Forristall 2000 and Dalzell 1999).
+//!
+//! The linear sea of [`super`] is η1 = Σ_i a_i cos ψ_i over every resolved wavevector k_i
+//! of the whole plane, with a_i = 2|h̃0(k_i)|, ψ_i = k_i·x − ω_i t + arg h̃0(k_i). To
+//! second order,
+//!
+//! η2 = Σ_i Σ_j a_i a_j [K⁺_ij cos(ψ_i + ψ_j) + K⁻_ij cos(ψ_i − ψ_j)],
+//!
+//! a double sum over all ordered pairs, with R = k tanh(kd) = ω²/g, s = √R, Q = k² − R²,
+//! k_i·k_j the dot product and k± = |k_i ± k_j|:
+//!
+//! ```text
+//! K⁺ = ¼ [(D⁺ − (k_i·k_j − R_i R_j))/(s_i s_j) + R_i + R_j]
+//! D⁺ = [(s_i + s_j)(s_i Q_j + s_j Q_i) + 2(s_i + s_j)²(k_i·k_j − R_i R_j)]
+//!      / [(s_i + s_j)² − k⁺ tanh(k⁺ d)]
+//! K⁻ = ¼ [(D⁻ − (k_i·k_j + R_i R_j))/(s_i s_j) + R_i + R_j]
+//! D⁻ = [(s_i − s_j)(s_j Q_i − s_i Q_j) + 2(s_i − s_j)²(k_i·k_j + R_i R_j)]
+//!      / [(s_i − s_j)² − k⁻ tanh(k⁻ d)]
+//! ```
+//!
+//! Deep water (d → ∞: R = k, Q = 0, tanh = 1) and collinear waves give K⁺ = (k_i + k_j)/4
+//! and K⁻ = −|k_i − k_j|/4; a single wave gives Stokes' η2 = ½ k a² cos 2ψ. On the
+//! diagonal K⁻_ii is the limit of collinear pairs, the set-down under a wave group with
+//! its return flow: ½[(k²/(2R) − R/2 + g k/(ω c_g))/(1 − g d/c_g²) − k/sinh 2kd], zero in
+//! deep water.
+//!
+//! On the grid: k_i ± k_j is a grid wavevector, so every pair adds a_i a_j K (with the
+//! pair's phase) to one cell of a full-plane array Z, η2 = Re Σ_q Z_q e^{iq·x}, and the
+//! half spectrum H2(q) = ½(Z_q + conj Z_{−q}) joins the linear one before the one
+//! inverse transform. Pairs whose k_i ± k_j falls outside the grid (beyond Nyquist, or on
+//! the Nyquist row or column, which the synthesis leaves out) are dropped and counted.
+//!
+//! Cost: the pairs of the components that carry a fraction q of the spectrum's variance
+//! (the strongest by E|h̃0|², ties by index), so a few thousand components instead of
+//! the whole grid. Each Z line is summed by one task in a fixed order, so the field does
+//! not depend on the number of threads. Time: ψ_i ± ψ_j move with ω_i ± ω_j, the ω of
+//! the linear sea (rounded to the loop's multiples when looping, so sums and differences
+//! stay multiples).
+
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+use rustfft::num_complex::{Complex, Complex32};
+use serde::Serialize;
+
+use super::{HalfSpectrum, SpectrumSetup, build_lines, draw_line, resolved_ranges};
+use crate::fastmath;
+use crate::grid::signed_index;
+use crate::simd::Isa;
+use crate::spectrum::{Dispersion, G};
+
+type C64 = Complex<f64>;
+
+/// A free wave of the linear sea.
+#[derive(Debug, Clone, Copy)]
+pub struct Component {
+    pub n: i64,
+    pub m: i64,
+    pub kx: f64,
+    pub ky: f64,
+    pub k: f64,
+    /// R = k tanh(kd) = ω²/g, rad/m.
+    pub r: f64,
+    /// √R.
+    pub s: f64,
+    /// k² − R² (0 in deep water).
+    pub q: f64,
+    /// h̃0 = ρ e^{iφ}.
+    pub rho: f64,
+    pub phi: f64,
+    /// E|h̃0|², m² (the ranking).
+    pub p: f64,
+}
+
+impl Component {
+    /// The wave of wavevector (kx, ky) with h̃0 = ρ e^{iφ}, at depth `depth` (None: deep).
+    pub fn new(kx: f64, ky: f64, rho: f64, phi: f64, depth: Option<f64>) -> Self {
+        let k = kx.hypot(ky);
+        let r = match depth {
+            Some(d) => k * tanh(k * d),
+            None => k,
+        };
+        Self {
+            n: 0,
+            m: 0,
+            kx,
+            ky,
+            k,
+            r,
+            s: r.sqrt(),
+            q: (k - r) * (k + r),
+            rho,
+            phi,
+            p: rho * rho,
+        }
+    }
+}
+
+fn tanh(x: f64) -> f64 {
+    crate::spectrum::spreading::tanh(x.abs()).copysign(x)
+}
+
+/// K⁺ and K⁻ of two different waves (see the module notes); `depth` None is deep water.
+#[inline]
+pub fn kernels(a: &Component, b: &Component, depth: Option<f64>) -> (f64, f64) {
+    (kernel_plus(a, b, depth), kernel_minus(a, b, depth))
+}
+
+/// K⁺ of two different waves.
+#[inline]
+pub fn kernel_plus(a: &Component, b: &Component, depth: Option<f64>) -> f64 {
+    let dot = a.kx * b.kx + a.ky * b.ky;
+    let kp = (a.k * a.k + b.k * b.k + 2.0 * dot).max(0.0).sqrt();
+    let tp = match depth {
+        Some(d) => kp * tanh(kp * d),
+        None => kp,
+    };
+    let rr = a.r * b.r;
+    let sp = a.s + b.s;
+    let den = sp * sp - tp;
+    let d_plus = if den != 0.0 {
+        (sp * (a.s * b.q + b.s * a.q) + 2.0 * sp * sp * (dot - rr)) / den
+    } else {
+        0.0
+    };
+    0.25 * ((d_plus - (dot - rr)) / (a.s * b.s) + a.r + b.r)
+}
+
+/// K⁻ of two different waves.
+#[inline]
+pub fn kernel_minus(a: &Component, b: &Component, depth: Option<f64>) -> f64 {
+    let dot = a.kx * b.kx + a.ky * b.ky;
+    let km = (a.k * a.k + b.k * b.k - 2.0 * dot).max(0.0).sqrt();
+    let tm = match depth {
+        Some(d) => km * tanh(km * d),
+        None => km,
+    };
+    let rr = a.r * b.r;
+    let sm = a.s - b.s;
+    let den = sm * sm - tm;
+    let d_minus = if den != 0.0 {
+        (sm * (b.s * a.q - a.s * b.q) + 2.0 * sm * sm * (dot + rr)) / den
+    } else {
+        0.0
+    };
+    0.25 * ((d_minus - (dot + rr)) / (a.s * b.s) + a.r + b.r)
+}
+
+/// K⁺_ii (Stokes' ½k in deep water) and K⁻_ii (the set-down; 0 in deep water) of one wave.
+pub fn self_kernels(c: &Component, depth: Option<f64>) -> (f64, f64) {
+    let k_plus = kernel_plus(c, c, depth);
+    let k_minus = match depth {
+        None => 0.0,
+        Some(d) => {
+            let (k, r) = (c.k, c.r);
+            let omega = (G * r).sqrt();
+            let kd = k * d;
+            let t = tanh(kd);
+            let cg = 0.5 * G * (t + kd * (1.0 - t * t)) / omega;
+            let t1 = 0.5 * k * k / r;
+            let t2 = 0.5 * r;
+            let t3 = G * k / (omega * cg);
+            let sinh_term = if 2.0 * kd < 300.0 {
+                let e = fastmath::exp(2.0 * kd);
+                k / (0.5 * (e - 1.0 / e))
+            } else {
+                0.0
+            };
+            0.5 * ((t1 - t2 + t3) / (1.0 - G * d / (cg * cg)) - sinh_term)
+        }
+    };
+    (k_plus, k_minus)
+}
+
+/// What the sidecar records of a second-order field.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct SecondOrderInfo {
+    /// The variance fraction asked for.
+    pub fraction: f64,
+    /// Linear components paired, of the resolved ones with energy.
+    pub components: usize,
+    pub components_available: usize,
+    /// The fraction of the expected variance the paired components carry.
+    pub variance_fraction_kept: f64,
+    /// Pairs (unordered, with the self-pairs) whose sum or difference wavevector fell
+    /// outside the grid and were dropped, and all pairs.
+    pub sum_pairs_dropped: u64,
+    pub difference_pairs_dropped: u64,
+    pub pairs: u64,
+}
+
+/// The paired components of a sea, by kx line.
+pub struct SecondOrder {
+    comps: Vec<Component>,
+    /// For every kx index n (offset by nx), the range of `comps` on that line.
+    lines: Vec<std::ops::Range<usize>>,
+    /// The kx indices that hold components, ascending.
+    occupied: Vec<i64>,
+    depth: Option<f64>,
+    nx: usize,
+    ny: usize,
+    pub info: SecondOrderInfo,
+}
+
+fn depth_of(d: Dispersion) -> Option<f64> {
+    match d {
+        Dispersion::Deep => None,
+        Dispersion::Finite { depth_m } => Some(depth_m),
+    }
+}
+
+/// n lies on the grid's resolved range (not the Nyquist index of an even length).
+#[inline]
+fn on_grid(n: i64, len: usize) -> bool {
+    let half = (len / 2) as i64;
+    if len % 2 == 0 {
+        n > -half && n < half
+    } else {
+        n >= -half && n <= half
+    }
+}
+
+impl SecondOrder {
+    /// The components of `setup` (its draws; the time is not used) that carry `fraction`
+    /// of the expected variance.
+    pub fn new(setup: &SpectrumSetup, fraction: f64) -> Self {
+        let isa = Isa::detect();
+        let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+        let depth = depth_of(setup.dispersion);
+        let per_line: Mutex<Vec<Vec<Component>>> = Mutex::new(vec![Vec::new(); nx / 2 + 1]);
+        build_lines(setup, |n, _kx, buf, _line| {
+            draw_line(setup, isa, n, buf);
+            let mut out = Vec::new();
+            for r in resolved_ranges(n, nx, ny) {
+                for idx in r {
+                    let m = signed_index(idx, ny);
+                    let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
+                        if rho > 0.0 {
+                            let (kx, ky) = setup.wavevector(n, m);
+                            let mut c = Component::new(kx, ky, rho, phi, depth);
+                            (c.n, c.m, c.p) = (n, m, p);
+                            out.push(c);
+                        }
+                    };
+                    push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
+                    // On the kx = 0 line the a draws of ±m already cover both.
+                    if n > 0 {
+                        push(-n, -m, buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+                    }
+                }
+            }
+            per_line.lock().expect("no panics while holding the lock")[n as usize] = out;
+            0.0
+        });
+        let mut all: Vec<Component> = per_line
+            .into_inner()
+            .expect("no panics while holding the lock")
+            .into_iter()
+            .flatten()
+            .collect();
+        let available = all.len();
+        all.sort_by(|a, b| b.p.total_cmp(&a.p).then((a.n, a.m).cmp(&(b.n, b.m))));
+        let total: f64 = all.iter().map(|c| c.p).sum();
+        let mut kept = 0.0;
+        let mut count = 0;
+        for c in &all {
+            if kept >= fraction * total {
+                break;
+            }
+            kept += c.p;
+            count += 1;
+        }
+        all.truncate(count);
+        all.sort_by_key(|c| (c.n, c.m));
+        let mut lines = vec![0..0; 2 * nx + 1];
+        let mut occupied = Vec::new();
+        let mut start = 0;
+        while start < all.len() {
+            let n = all[start].n;
+            let end = start + all[start..].iter().take_while(|c| c.n == n).count();
+            lines[(n + nx as i64) as usize] = start..end;
+            occupied.push(n);
+            start = end;
+        }
+        let c = all.len() as u64;
+        let info = SecondOrderInfo {
+            fraction,
+            components: all.len(),
+            components_available: available,
+            variance_fraction_kept: if total > 0.0 { kept / total } else { 0.0 },
+            pairs: c * (c + 1) / 2,
+            ..SecondOrderInfo::default()
+        };
+        Self {
+            comps: all,
+            lines,
+            occupied,
+            depth,
+            nx,
+            ny,
+            info,
+        }
+    }
+
+    /// A sea of the given components (tests, the single-pair checks), at `depth`.
+    pub fn from_components(
+        mut comps: Vec<Component>,
+        nx: usize,
+        ny: usize,
+        depth: Option<f64>,
+    ) -> Self {
+        comps.sort_by_key(|c| (c.n, c.m));
+        let mut lines = vec![0..0; 2 * nx + 1];
+        let mut occupied = Vec::new();
+        let mut start = 0;
+        while start < comps.len() {
+            let n = comps[start].n;
+            let end = start + comps[start..].iter().take_while(|c| c.n == n).count();
+            lines[(n + nx as i64) as usize] = start..end;
+            occupied.push(n);
+            start = end;
+        }
+        let c = comps.len() as u64;
+        let info = SecondOrderInfo {
+            fraction: 1.0,
+            components: comps.len(),
+            components_available: comps.len(),
+            variance_fraction_kept: 1.0,
+            pairs: c * (c + 1) / 2,
+            ..SecondOrderInfo::default()
+        };
+        Self {
+            comps,
+            lines,
+            occupied,
+            depth,
+            nx,
+            ny,
+            info,
+        }
+    }
+
+    pub fn components(&self) -> &[Component] {
+        &self.comps
+    }
+
+    /// The indices of `comps` on kx line n.
+    fn line(&self, n: i64) -> std::ops::Range<usize> {
+        let i = n + self.nx as i64;
+        if i < 0 || i as usize >= self.lines.len() {
+            return 0..0;
+        }
+        self.lines[i as usize].clone()
+    }
+
+    /// The complex amplitudes a_i e^{i(φ_i − ω_i t)} of the components at `setup`'s time,
+    /// in the order of `comps`.
+    fn amplitudes(&self, setup: &SpectrumSetup) -> Vec<C64> {
+        self.comps
+            .iter()
+            .map(|c| {
+                let wt = setup.omega_t(c.kx, c.ky);
+                let (s, co) = fastmath::sin_cos(c.phi - wt);
+                C64::new(2.0 * c.rho * co, 2.0 * c.rho * s)
+            })
+            .collect()
+    }
+
+    /// The full-plane Z of the bound waves at `setup`'s time (nx lines of ny, both in FFT
+    /// order), and the sum and difference pairs kept on the grid.
+    pub fn bound_plane(&self, setup: &SpectrumSetup) -> (Vec<C64>, u64, u64) {
+        let (nx, ny) = (self.nx, self.ny);
+        let b = self.amplitudes(setup);
+        let c = &self.comps;
+        let mut z = vec![C64::new(0.0, 0.0); nx * ny];
+        let depth = self.depth;
+        let counts: Vec<(u64, u64)> = z
+            .par_chunks_mut(ny)
+            .enumerate()
+            .map(|(row, zline)| {
+                let nq = signed_index(row, nx);
+                if !on_grid(nq, nx) {
+                    return (0, 0);
+                }
+                let (mut sums, mut diffs) = (0u64, 0u64);
+                let mut add = |m: i64, v: C64| -> bool {
+                    if on_grid(m, ny) {
+                        zline[m.rem_euclid(ny as i64) as usize] += v;
+                        true
+                    } else {
+                        false
+                    }
+                };
+                // Sum terms: lines a ≤ b with a + b = nq; within a line, i ≤ j.
+                for &na in &self.occupied {
+                    let nb = nq - na;
+                    if nb < na {
+                        break;
+                    }
+                    let lb = self.line(nb);
+                    for i in self.line(na) {
+                        let js = if na == nb { i..lb.end } else { lb.clone() };
+                        for j in js {
+                            let (kp, f) = if i == j {
+                                (self_kernels(&c[i], depth).0, 1.0)
+                            } else {
+                                (kernel_plus(&c[i], &c[j], depth), 2.0)
+                            };
+                            if add(c[i].m + c[j].m, b[i] * b[j] * (f * kp)) {
+                                sums += 1;
+                            }
+                        }
+                    }
+                }
+                // Difference terms, oriented so that nq = n_a − n_b ≥ 0; on nq = 0, i ≤ j.
+                if nq >= 0 {
+                    for &na in &self.occupied {
+                        let lb = self.line(na - nq);
+                        for i in self.line(na) {
+                            let js = if nq == 0 { i..lb.end } else { lb.clone() };
+                            for j in js {
+                                let (km, f) = if i == j {
+                                    (self_kernels(&c[i], depth).1, 1.0)
+                                } else {
+                                    (kernel_minus(&c[i], &c[j], depth), 2.0)
+                                };
+                                if add(c[i].m - c[j].m, b[i] * b[j].conj() * (f * km)) {
+                                    diffs += 1;
+                                }
+                            }
+                        }
+                    }
+                }
+                (sums, diffs)
+            })
+            .collect();
+        let (s, d) = counts.iter().fold((0, 0), |(s, d), &(a, b)| (s + a, d + b));
+        (z, s, d)
+    }
+
+    /// Adds the bound waves at `setup`'s time to the linear half spectrum `half`, and
+    /// returns the pair counts for the sidecar.
+    pub fn add_to(&self, setup: &SpectrumSetup, half: &mut HalfSpectrum) -> SecondOrderInfo {
+        let (nx, ny) = (self.nx, self.ny);
+        let (z, sums, diffs) = self.bound_plane(setup);
+        half.data
+            .par_chunks_mut(ny)
+            .enumerate()
+            .for_each(|(n, line)| {
+                let n = n as i64;
+                if !on_grid(n, nx) {
+                    return;
+                }
+                let row = n as usize;
+                let mirror = (-n).rem_euclid(nx as i64) as usize;
+                for (idx, v) in line.iter_mut().enumerate() {
+                    let m = signed_index(idx, ny);
+                    if !on_grid(m, ny) {
+                        continue;
+                    }
+                    let midx = (-m).rem_euclid(ny as i64) as usize;
+                    let h = 0.5 * (z[row * ny + idx] + z[mirror * ny + midx].conj());
+                    *v += Complex32::new(h.re as f32, h.im as f32);
+                }
+            });
+        SecondOrderInfo {
+            sum_pairs_dropped: self.info.pairs - sums,
+            difference_pairs_dropped: self.info.pairs - diffs,
+            ..self.info.clone()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
