@@ -35,6 +35,7 @@ pub mod limits;
 pub mod measure;
 pub mod pipeline;
 mod plot;
+pub mod raster;
 pub mod render;
 pub mod rng;
 mod simd;

@@ -12,7 +12,7 @@ const LAYERS: &[&[&str]] = &[
     &["error"],
     &["grid", "fastmath"],
     &["limits", "rng"],
-    &["simd"],
+    &["simd", "raster"],
     &["config", "spectrum"],
     &["measure"],
     &["field"],

@@ -124,7 +124,7 @@ pub struct GrayImage {
     pub values: Vec<f32>,
 }
 
-/// Reads an image as gray values in [0, 1] through `image` (`limits::read_raster`): any
+/// Reads an image as gray values in [0, 1] through `image` (`raster::read_raster`): any
 /// format read there, gray or color by its Rec. 709 luma (alpha ignored), integer samples
 /// as a fraction of their largest value, float samples clamped to [0, 1].
 pub fn read_gray(path: &Path) -> Result<GrayImage> {
@@ -132,7 +132,7 @@ pub fn read_gray(path: &Path) -> Result<GrayImage> {
         path: path.to_path_buf(),
         message,
     };
-    let r = crate::limits::read_raster(path).map_err(|m| bad(format!("α image: {m}")))?;
+    let r = crate::raster::read_raster(path).map_err(|m| bad(format!("α image: {m}")))?;
     if let Some(i) = r.values.iter().position(|v| !v.is_finite()) {
         return Err(bad(format!(
             "α image sample (x {}, row {}) is {}: α must be finite",

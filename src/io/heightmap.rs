@@ -190,7 +190,7 @@ pub fn load_detailed(path: &Path) -> Result<Loaded, Error> {
 pub fn load_with(path: &Path, opts: &ReadOptions) -> Result<Loaded, Error> {
     let head = head_of(path)?;
     if let Ok(format) = image::guess_format(&head) {
-        crate::limits::check_extension(path, format).map_err(|m| input_error(path, m))?;
+        crate::raster::check_extension(path, format).map_err(|m| input_error(path, m))?;
     }
     let sidecar = read_sidecar(path)?;
     let (heights, kind) = match own_reader(path, &head, sidecar.is_some()) {

@@ -23,7 +23,7 @@ pub fn kind_of(format: image::ImageFormat) -> ImageKind {
 
 /// The heights of `path` and the kind of image it is.
 pub fn read(path: &Path, opts: &ReadOptions) -> Result<(Heights, ImageKind), Error> {
-    let r = crate::limits::read_raster(path).map_err(|m| input_error(path, m))?;
+    let r = crate::raster::read_raster(path).map_err(|m| input_error(path, m))?;
     let kind = kind_of(r.format);
     let (data, step) = match r.integer_bits {
         None => (r.values, None),
@@ -37,7 +37,7 @@ pub fn read(path: &Path, opts: &ReadOptions) -> Result<(Heights, ImageKind), Err
                             path,
                             format!(
                                 "is a {} image of {bits}-bit integer samples with no height mapping of its own (a sidecar for a 16-bit gray PNG, or a seasynth text chunk): give --height-range MIN:MAX, the heights in meters of its darkest and brightest values",
-                                crate::limits::format_name(r.format)
+                                crate::raster::format_name(r.format)
                             ),
                         ));
                     }
