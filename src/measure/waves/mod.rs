@@ -9,7 +9,8 @@
 //!   than two samples, so its slope variance is a part of the ocean's.
 //! - **Zero-crossing waves** along transects in the mean wave direction (the axial peak
 //!   direction of the measured spectrum): parallel lines one sample apart, sampled every
-//!   min(dx, dy) by bilinear interpolation and clipped to the grid. A wave runs from one
+//!   min(dx, dy) by bilinear interpolation and clipped to the grid (at most 2·max(nx, ny)
+//!   lines and samples per line, for grids of very unequal spacings). A wave runs from one
 //!   zero up-crossing (of η − η̄) to the next; its height H = max − min. H1/3 is the mean
 //!   of the highest third. Exceedance P(H > h) against Rayleigh exp(−2h²/Hs²), Hs = 4σ.
 //! - **Crests**: the maximum of η − η̄ between an up-crossing and the next down-crossing.
@@ -56,9 +57,12 @@ pub struct Exceedance {
 pub struct WaveHeights {
     pub count: usize,
     /// Mean of the highest third, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub h_third_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub h_max_m: Option<f64>,
     /// H1/3 / (4σ): about 0.95–1 for a real narrow-band sea, 1 for Rayleigh heights.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub h_third_over_hs: Option<f64>,
     pub exceedance: Vec<Exceedance>,
 }
@@ -67,13 +71,20 @@ pub struct WaveHeights {
 #[derive(Debug, Clone, Serialize)]
 pub struct Crests {
     pub count: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub c_max_m: Option<f64>,
     /// Mean of the highest third, over Hs.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub c_third_over_hs: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub steepness_s1: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub ursell: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub mean_period_tm01_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub forristall_alpha: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub forristall_beta: Option<f64>,
     pub exceedance: Vec<Exceedance>,
 }
@@ -89,6 +100,7 @@ pub struct WaveStats {
     /// Σ k²·P(k) over the measured spectrum.
     pub mean_square_slope: f64,
     /// 0.003 + 5.12e-3·U, when U is known.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub cox_munk_mss: Option<f64>,
     pub mss_note: &'static str,
     /// Direction of the transects, degrees from +x (modulo 180).
@@ -194,10 +206,14 @@ pub fn transects(grid: &Grid, theta: f64, mean: f64) -> Vec<Vec<f64>> {
         .fold(f64::NEG_INFINITY, f64::max);
     let (cx, cy) = (0.5 * xmax, 0.5 * ymax);
     let o_center = proj((cx, cy));
-    let lines = ((omax - omin) / ds).floor() as i64;
+    // At most 2·max(nx, ny) lines and samples per line: a grid of very unequal spacings
+    // (1e-7 m by 1e8 m) would otherwise ask for 1e15 of them.
+    let cap = 2.0 * spec.nx.max(spec.ny) as f64;
+    let line_step = ds.max((omax - omin) / cap);
+    let lines = ((omax - omin) / line_step).floor() as i64;
     let mut out = Vec::new();
     for l in 0..=lines {
-        let o = omin + l as f64 * ds - o_center;
+        let o = omin + l as f64 * line_step - o_center;
         // Points p(s) = c + o·n + s·(u, v); the s interval inside the rectangle.
         let (px, py) = (cx - v * o, cy + u * o);
         let (mut s0, mut s1) = (f64::NEG_INFINITY, f64::INFINITY);
@@ -212,13 +228,14 @@ pub fn transects(grid: &Grid, theta: f64, mean: f64) -> Vec<Vec<f64>> {
             s0 = s0.max(a.min(b));
             s1 = s1.min(a.max(b));
         }
-        if s1 - s0 < 2.0 * ds {
+        let step = ds.max((s1 - s0) / cap);
+        if s1 - s0 < 2.0 * step {
             continue;
         }
-        let count = ((s1 - s0) / ds).floor() as usize + 1;
+        let count = ((s1 - s0) / step).floor() as usize + 1;
         let line: Vec<f64> = (0..count)
             .map(|i| {
-                let s = s0 + i as f64 * ds;
+                let s = s0 + i as f64 * step;
                 bilinear(grid, px + s * u, py + s * v) - mean
             })
             .collect();
@@ -253,7 +270,8 @@ fn fraction_above(sorted: &[f64], level: f64) -> f64 {
 /// Mean of the highest third of sorted (ascending) values.
 fn top_third(sorted: &[f64]) -> Option<f64> {
     let n = sorted.len() / 3;
-    (n > 0).then(|| sorted[sorted.len() - n..].iter().sum::<f64>() / n as f64)
+    let m = sorted[sorted.len() - n..].iter().sum::<f64>() / n.max(1) as f64;
+    (n > 0 && m.is_finite()).then_some(m)
 }
 
 /// Tm01 = m0/m1 of the frequency spectrum of the measured radial spectrum, s.
@@ -288,6 +306,9 @@ pub fn wave_statistics(grid: &Grid, analysis: &Analysis, sea: &SeaContext) -> Wa
     for l in &lines {
         zero_crossings(l, &mut heights, &mut crests);
     }
+    // Sums of extreme heights can overflow; only finite values are counted.
+    heights.retain(|v| v.is_finite());
+    crests.retain(|v| v.is_finite());
     heights.sort_by(f64::total_cmp);
     crests.sort_by(f64::total_cmp);
     let hs = 4.0 * sigma;
