@@ -231,15 +231,19 @@ fn wait_done(c: &Cluster, job: &str, dir: &Path, logs: &Path) {
 }
 
 /// Waits until task `id` of array job `job` is RUNNING.
+/// Waits until task `id` runs and its script has started (its first log line is
+/// written): a task that Slurm reports RUNNING may not have run a line yet on a busy node.
 fn wait_running(c: &Cluster, job: &str, id: usize, dir: &Path) {
     let t0 = Instant::now();
+    let log = dir.join(format!("sea-{job}_{id}.log"));
     loop {
         if let Some((state, _, _)) = tasks(c, job, dir).get(&id) {
-            if state == "RUNNING" {
+            let started = std::fs::read_to_string(&log).is_ok_and(|t| t.contains(", run 0"));
+            if state == "RUNNING" && started {
                 return;
             }
             assert!(
-                state == "PENDING",
+                state == "PENDING" || state == "RUNNING",
                 "task {id} is {state}: it ended before the test could act on it (slower jobs needed)"
             );
         }
