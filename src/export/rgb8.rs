@@ -22,7 +22,7 @@ pub fn write(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error
 pub const JPEG_QUALITY: u8 = 90;
 
 /// Encodes an RGB buffer as the staged file's name asks: `.jpg`/`.jpeg` (JPEG, quality
-/// [`JPEG_QUALITY`]), `.webp` (lossless WebP), else PNG ([`write`]).
+/// [`JPEG_QUALITY`]), `.webp` (lossless WebP), else PNG ([`write()`]).
 pub fn write_by_name(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
     let ext = staged
         .path

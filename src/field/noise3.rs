@@ -17,7 +17,7 @@
 //! that the compiler vectorizes (compiled for each instruction set by
 //! `simd::multiversion`, the one of the run chosen when a [`Scratch`] is made; the same
 //! IEEE operations in the same order on all, no fused multiply–add, so the bits do not
-//! depend on the processor). A single point is a row of one sample: [`noise`] gives the
+//! depend on the processor). A single point is a row of one sample: [`noise()`] gives the
 //! very bits [`add_row`] gives at that point.
 
 use crate::simd::{Isa, multiversion};
