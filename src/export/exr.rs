@@ -18,24 +18,11 @@
 use std::io::{Seek, Write};
 
 use exr::prelude::*;
-use serde::Serialize;
 
+pub use super::options::{ExrCompression, ExrOptions};
 use super::sidecar::{EXR_CHANNEL as CHANNEL, ExrInfo, Sidecar};
 use super::{Describe, Exporter, FieldOut, Format, WriteSeek};
 use crate::grid::Grid;
-
-/// Compression of EXR files (`--exr-compression`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ExrCompression {
-    /// Uncompressed scan lines.
-    #[default]
-    None,
-    /// Deflate, blocks of 16 lines (OpenEXR's ZIP).
-    Zip,
-    /// Wavelet and Huffman coding (OpenEXR's PIZ).
-    Piz,
-}
 
 impl ExrCompression {
     fn encoding(self) -> Encoding {
@@ -49,33 +36,6 @@ impl ExrCompression {
             blocks: Blocks::ScanLines,
             line_order: LineOrder::Increasing,
         }
-    }
-}
-
-/// How EXR files are written: the compression and the sample type.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-pub struct ExrOptions {
-    pub compression: ExrCompression,
-    /// 16-bit half floats instead of 32-bit floats.
-    pub half: bool,
-}
-
-impl ExrOptions {
-    /// What the sidecar says of the samples.
-    pub fn describe(&self) -> String {
-        format!(
-            "{}, meters; {} scan lines, row 0 is y = 0",
-            if self.half {
-                "16-bit half float"
-            } else {
-                "32-bit float"
-            },
-            match self.compression {
-                ExrCompression::None => "uncompressed",
-                ExrCompression::Zip => "ZIP-compressed",
-                ExrCompression::Piz => "PIZ-compressed",
-            }
-        )
     }
 }
 

@@ -7,7 +7,6 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use super::maps::{MapEncoding, MapKind};
 use crate::error::{Error, Result};
 
 /// Output formats of the height, chosen by file extension.
@@ -28,6 +27,25 @@ pub enum Format {
     R16,
     /// `.r32`: 32-bit float samples in meters, no header.
     R32,
+}
+
+/// The kind of map an output name asks for (`NAME.KIND.ext`), if any.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MapKind {
+    Normal,
+    Foam,
+    Jacobian,
+    Displacement,
+}
+
+/// How a map is stored: its usual image (8-bit PNG normals, 16-bit PNG foam, float TIFF
+/// Jacobian and displacement) or float EXR.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MapEncoding {
+    Image,
+    Exr,
 }
 
 /// Extensions of the height formats, for error messages and the README (the first of a

@@ -18,26 +18,8 @@ use std::io::{Seek, Write};
 
 use tiff::encoder::{TiffEncoder, colortype};
 
+pub use super::format::{MapEncoding, MapKind};
 use crate::grid::GridSpec;
-
-/// The kind of map an output name asks for (`NAME.KIND.ext`), if any.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MapKind {
-    Normal,
-    Foam,
-    Jacobian,
-    Displacement,
-}
-
-/// How a map is stored: its usual image (8-bit PNG normals, 16-bit PNG foam, float TIFF
-/// Jacobian and displacement) or float EXR.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MapEncoding {
-    Image,
-    Exr,
-}
 
 /// What a wave-state map needs besides the state.
 pub struct MapContext<'a> {

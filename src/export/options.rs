@@ -5,8 +5,7 @@
 use serde::Serialize;
 
 use super::Format;
-use super::exr::{ExrCompression, ExrOptions};
-use super::maps::{MapEncoding, MapKind};
+use super::format::{MapEncoding, MapKind};
 use crate::error::{Error, ParamError, Result};
 
 /// Which engine axis points up in a mesh.
@@ -296,6 +295,46 @@ impl ExportOptions {
             });
         }
         Ok(())
+    }
+}
+
+/// Compression of EXR files (`--exr-compression`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ExrCompression {
+    /// Uncompressed scan lines.
+    #[default]
+    None,
+    /// Deflate, blocks of 16 lines (OpenEXR's ZIP).
+    Zip,
+    /// Wavelet and Huffman coding (OpenEXR's PIZ).
+    Piz,
+}
+
+/// How EXR files are written: the compression and the sample type.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct ExrOptions {
+    pub compression: ExrCompression,
+    /// 16-bit half floats instead of 32-bit floats.
+    pub half: bool,
+}
+
+impl ExrOptions {
+    /// What the sidecar says of the samples.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}, meters; {} scan lines, row 0 is y = 0",
+            if self.half {
+                "16-bit half float"
+            } else {
+                "32-bit float"
+            },
+            match self.compression {
+                ExrCompression::None => "uncompressed",
+                ExrCompression::Zip => "ZIP-compressed",
+                ExrCompression::Piz => "PIZ-compressed",
+            }
+        )
     }
 }
 
