@@ -1,6 +1,7 @@
 //! `seasynth analyze`, run as a program: the JSON report and its keys, statistics equal to
 //! the generator's sidecar, PNG against TIFF, a known cosine's wavelength and direction,
-//! Parseval, the FFT method against its target spectrum, and bad input (exit code 2, one
+//! Parseval, the FFT method against its target spectrum, the foam fraction of a choppy
+//! field (from its Jacobian map or regenerated), and bad input (exit code 2, one
 //! line naming the file).
 
 mod common;
@@ -498,5 +499,92 @@ fn a_bad_input_with_plot_leaves_no_plot_file_behind() {
         names_in(dir.path()),
         ["x.tif"],
         "no plot and no hidden .part file"
+    );
+}
+
+/// The fraction of the samples `j` below `t` and their minimum, computed here.
+fn below_and_min(j: &[f32], t: f64) -> (f64, f64) {
+    let below = j.iter().filter(|&&v| (v as f64) < t).count();
+    let min = j.iter().copied().fold(f32::INFINITY, f32::min);
+    (below as f64 / j.len() as f64, min as f64)
+}
+
+/// Checks the `jacobian` report of `doc` against the J samples `j`, threshold `t`.
+fn assert_jacobian(doc: &Value, j: &[f32], t: f64, source: &str) {
+    let (fraction, min) = below_and_min(j, t);
+    let r = &doc["jacobian"];
+    assert_eq!(r["source"], source, "{r}");
+    assert_eq!(num(r, "/threshold"), t, "{r}");
+    assert_eq!(num(r, "/fraction_below"), fraction, "{r}");
+    assert_eq!(num(r, "/min"), min, "{r}");
+}
+
+#[test]
+fn a_choppy_field_reports_the_fraction_of_j_below_its_foam_threshold_from_the_map_or_regenerated() {
+    const T: f64 = 0.8;
+    let dir = tempfile::tempdir().unwrap();
+    let field = [
+        "--method",
+        "fft",
+        "--size",
+        "64",
+        "--choppiness",
+        "2",
+        "--wind-speed",
+        "15",
+        "--foam-threshold",
+        "0.8",
+    ];
+    let with = |outs: &[&str]| {
+        let mut a = field.to_vec();
+        a.extend_from_slice(outs);
+        generate(dir.path(), &a);
+    };
+    with(&["-o", "c.tif", "-o", "c.jacobian.tif"]);
+    let (_, _, j) = tiff32::read(&dir.path().join("c.jacobian.tif")).unwrap();
+    let (fraction, _) = below_and_min(&j, T);
+    assert!(
+        fraction > 0.0 && fraction < 1.0,
+        "a sea with some foam: {fraction}"
+    );
+    assert_jacobian(&analyze_json(dir.path(), "c.tif"), &j, T, "map");
+    // Without the map, the sidecar's field is synthesized again: the same J.
+    std::fs::remove_file(dir.path().join("c.jacobian.tif")).unwrap();
+    assert_jacobian(&analyze_json(dir.path(), "c.tif"), &j, T, "regenerated");
+    let out = run_ok(dir.path(), &["analyze", "c.tif"]);
+    assert!(out.contains("J: fraction below 0.8"), "{out}");
+    // The EXR map's Y channel is read too.
+    with(&["-o", "e.tif", "-o", "e.jacobian.exr"]);
+    let (_, _, ch) =
+        seasynth::export::exr::read_channels(&dir.path().join("e.jacobian.exr")).unwrap();
+    let y = &ch.iter().find(|(n, _)| n == "Y").expect("a Y channel").1;
+    assert_jacobian(&analyze_json(dir.path(), "e.tif"), y, T, "map");
+}
+
+#[test]
+fn a_field_that_is_not_choppy_and_has_no_jacobian_map_reports_no_jacobian() {
+    let dir = tempfile::tempdir().unwrap();
+    generate(
+        dir.path(),
+        &["--method", "fft", "--size", "64", "-o", "still.tif"],
+    );
+    let doc = analyze_json(dir.path(), "still.tif");
+    assert!(doc.get("jacobian").is_none(), "{doc:#}");
+    let out = run_ok(dir.path(), &["analyze", "still.tif"]);
+    assert!(out.contains("J: not a choppy field"), "{out}");
+}
+
+#[test]
+fn a_jacobian_map_of_another_size_is_rejected_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    generate(
+        dir.path(),
+        &["--method", "fft", "--size", "64", "-o", "s.tif"],
+    );
+    write_cosine_tiff(&dir.path().join("s.jacobian.tif"), 32, 8.0, 0.0, 1.0);
+    assert_rejected(
+        dir.path(),
+        &["s.tif"],
+        &["s.jacobian.tif", "32×32", "64×64"],
     );
 }

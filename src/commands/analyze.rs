@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::export::Staged;
 use crate::grid::GridSpec;
 use crate::io::{ImageKind, Loaded, ReadOptions, load_with};
+use crate::measure::jacobian::{JacobianStats, jacobian_stats};
 use crate::measure::waves::{SeaContext, WaveStats, wave_statistics};
 use crate::measure::{Analysis, Target, analyze};
 use crate::plot::analysis::{PLOT_SIZE, render_plot};
@@ -28,6 +29,9 @@ struct Report<'a> {
     analysis: &'a Analysis,
     /// Wave-by-wave statistics.
     waves: &'a WaveStats,
+    /// J below the foam threshold, for a choppy field or one with a Jacobian map.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    jacobian: Option<&'a JacobianStats>,
 }
 
 /// Runs `seasynth analyze`.
@@ -64,6 +68,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         &analysis,
         &sea_context(loaded.sidecar.as_ref()),
     );
+    let jacobian = jacobian_of(&args.file, &loaded)?;
     let report = Report {
         file: args.file.display().to_string(),
         format: loaded.kind,
@@ -71,6 +76,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
         quantization_step_m: loaded.quantization_step_m,
         analysis: &analysis,
         waves: &waves,
+        jacobian: jacobian.as_ref().ok(),
     };
     if let Some(staged) = plot_waves {
         write_wave_plot(staged, &args, &report)?;
@@ -91,6 +97,7 @@ pub fn run(args: AnalyzeArgs) -> anyhow::Result<()> {
     } else {
         std::io::Write::write_all(&mut out, human_report(&report).as_bytes())?;
         std::io::Write::write_all(&mut out, wave_report(&waves, analysis.hs_m).as_bytes())?;
+        std::io::Write::write_all(&mut out, jacobian_report(&jacobian).as_bytes())?;
     }
     Ok(())
 }
@@ -181,6 +188,120 @@ fn sea_context(sidecar: Option<&Value>) -> SeaContext {
             depth_m: p.spectrum.depth_m,
         },
         None => SeaContext::default(),
+    }
+}
+
+/// The Jacobian statistics of the field in `file`: read from the Jacobian map beside it
+/// (`NAME.jacobian.tif`, else `NAME.jacobian.exr`) when there is one, else from the field
+/// its sidecar describes synthesized again when that is choppy. The threshold is the
+/// sidecar's `motion.foam_threshold`, else its default. `Ok(Err(note))`: none, and why.
+fn jacobian_of(
+    file: &std::path::Path,
+    loaded: &Loaded,
+) -> Result<Result<JacobianStats, String>, Error> {
+    let params: Option<Params> = loaded
+        .sidecar
+        .as_ref()
+        .and_then(|d| d.get("params"))
+        .and_then(|p| serde_json::from_value(p.clone()).ok());
+    let threshold = params
+        .as_ref()
+        .map_or(Params::default().motion.foam_threshold, |p| {
+            p.motion.foam_threshold
+        });
+    let spec = &loaded.grid.spec;
+    for ext in ["jacobian.tif", "jacobian.exr"] {
+        let path = file.with_extension(ext);
+        if path.is_file() {
+            let j = read_jacobian_map(&path, spec.nx, spec.ny)?;
+            return Ok(Ok(jacobian_stats(&j, threshold, "map")));
+        }
+    }
+    let Some(params) = params.filter(|p| p.motion.choppiness != 0.0) else {
+        return Ok(Err("not a choppy field".into()));
+    };
+    Ok(regenerate_jacobian(&params, spec).map(|j| jacobian_stats(&j, threshold, "regenerated")))
+}
+
+/// J of a Jacobian map written by seasynth: a one-channel float TIFF or an EXR's `Y`
+/// channel, `nx`×`ny` like the height map.
+fn read_jacobian_map(path: &std::path::Path, nx: usize, ny: usize) -> Result<Vec<f32>, Error> {
+    let bad = |e: String| crate::io::input_error(path, format!("not a readable Jacobian map: {e}"));
+    let (w, h, j) = if path.extension().is_some_and(|e| e == "exr") {
+        let (w, h, channels) =
+            crate::export::exr::read_channels(path).map_err(|e| bad(e.to_string()))?;
+        let j = channels
+            .into_iter()
+            .find(|(name, _)| name == "Y")
+            .map(|(_, v)| v)
+            .ok_or_else(|| bad("no channel Y".into()))?;
+        (w, h, j)
+    } else {
+        crate::export::tiff32::read(path).map_err(|e| bad(e.to_string()))?
+    };
+    if (w, h) != (nx, ny) || j.len() != nx * ny {
+        return Err(crate::io::input_error(
+            path,
+            format!(
+                "the Jacobian map holds {} values on {w}×{h} pixels but the height map is {nx}×{ny}",
+                j.len()
+            ),
+        ));
+    }
+    Ok(j)
+}
+
+/// J of the choppy field that `params` (a sidecar's) describe on `spec`, synthesized
+/// again (bit for bit the field that was written); `Err` says why it cannot be.
+fn regenerate_jacobian(params: &Params, spec: &GridSpec) -> Result<Vec<f32>, String> {
+    let not = |why: String| format!("not measured: {why}");
+    params
+        .validate()
+        .map_err(|e| not(format!("the sidecar's `params` are not valid ({e})")))?;
+    let [nx, ny] = params.grid.size.0;
+    if (nx, ny) != (spec.nx, spec.ny) {
+        return Err(not(format!(
+            "the sidecar's `params` describe a {nx}×{ny} grid but the image is {}×{}",
+            spec.nx, spec.ny
+        )));
+    }
+    let extras = crate::field::dynamics::Extras {
+        jacobian: true,
+        ..Default::default()
+    };
+    crate::limits::check_memory(
+        crate::pipeline::memory::Footprint::of_field(params, extras).bytes(spec.len() as u64, 1),
+        &format!(
+            "the {nx}x{ny} {} field of the sidecar",
+            params.method.name()
+        ),
+        false,
+    )
+    .map_err(|e| not(e.to_string()))?;
+    let synthesis = crate::field::Synthesizer::new(params, extras, false)
+        .map_err(|e| not(format!("the sidecar's field cannot be synthesized ({e})")))?
+        .frame(params.time_s);
+    let j = synthesis
+        .surface
+        .jacobian
+        .ok_or_else(|| not("the method gives no Jacobian".into()))?;
+    Ok(j.values(spec.len()).into_owned())
+}
+
+/// The Jacobian line of the text report.
+fn jacobian_report(j: &Result<JacobianStats, String>) -> String {
+    match j {
+        Ok(j) => format!(
+            "J: fraction below {} (foam) {:.5}, min {:.4} ({})\n",
+            j.threshold,
+            j.fraction_below,
+            j.min,
+            match j.source {
+                "map" => "from the Jacobian map",
+                _ => "the sidecar's field regenerated",
+            }
+        ),
+        Err(note) => format!("J: {note}\n"),
     }
 }
 
