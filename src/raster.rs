@@ -103,71 +103,20 @@ pub fn read_raster(path: &std::path::Path) -> Result<Raster, String> {
         .map_err(|e| format!("not a readable {} image: {e}", format_name(format)))?;
     let (width, height) = (img.width() as usize, img.height() as usize);
     use image::DynamicImage as D;
-    let luma = |r: f32, g: f32, b: f32| 0.2126 * r + 0.7152 * g + 0.0722 * b;
     let (values, bits): (Vec<f32>, _) = match &img {
-        D::ImageLuma8(i) => (i.pixels().map(|p| p[0] as f32 / 255.0).collect(), Some(8)),
-        D::ImageLumaA8(i) => (i.pixels().map(|p| p[0] as f32 / 255.0).collect(), Some(8)),
-        D::ImageLuma16(i) => (
-            i.pixels().map(|p| p[0] as f32 / 65535.0).collect(),
-            Some(16),
-        ),
-        D::ImageLumaA16(i) => (
-            i.pixels().map(|p| p[0] as f32 / 65535.0).collect(),
-            Some(16),
-        ),
-        D::ImageRgb8(i) => (
-            i.pixels()
-                .map(|p| {
-                    luma(
-                        p[0] as f32 / 255.0,
-                        p[1] as f32 / 255.0,
-                        p[2] as f32 / 255.0,
-                    )
-                })
-                .collect(),
-            Some(8),
-        ),
-        D::ImageRgba8(i) => (
-            i.pixels()
-                .map(|p| {
-                    luma(
-                        p[0] as f32 / 255.0,
-                        p[1] as f32 / 255.0,
-                        p[2] as f32 / 255.0,
-                    )
-                })
-                .collect(),
-            Some(8),
-        ),
-        D::ImageRgb16(i) => (
-            i.pixels()
-                .map(|p| {
-                    luma(
-                        p[0] as f32 / 65535.0,
-                        p[1] as f32 / 65535.0,
-                        p[2] as f32 / 65535.0,
-                    )
-                })
-                .collect(),
-            Some(16),
-        ),
-        D::ImageRgba16(i) => (
-            i.pixels()
-                .map(|p| {
-                    luma(
-                        p[0] as f32 / 65535.0,
-                        p[1] as f32 / 65535.0,
-                        p[2] as f32 / 65535.0,
-                    )
-                })
-                .collect(),
-            Some(16),
-        ),
+        D::ImageLuma8(i) => (gray_values(i, 255.0), Some(8)),
+        D::ImageLumaA8(i) => (gray_values(i, 255.0), Some(8)),
+        D::ImageLuma16(i) => (gray_values(i, 65535.0), Some(16)),
+        D::ImageLumaA16(i) => (gray_values(i, 65535.0), Some(16)),
+        D::ImageRgb8(i) => (gray_values(i, 255.0), Some(8)),
+        D::ImageRgba8(i) => (gray_values(i, 255.0), Some(8)),
+        D::ImageRgb16(i) => (gray_values(i, 65535.0), Some(16)),
+        D::ImageRgba16(i) => (gray_values(i, 65535.0), Some(16)),
         other => (
             other
                 .to_rgb32f()
                 .pixels()
-                .map(|p| luma(p[0], p[1], p[2]))
+                .map(|p| luma([p[0], p[1], p[2]]))
                 .collect(),
             None,
         ),
@@ -179,4 +128,29 @@ pub fn read_raster(path: &std::path::Path) -> Result<Raster, String> {
         integer_bits: bits,
         format,
     })
+}
+
+/// Rec. 709 luma of linear R, G, B.
+fn luma([r, g, b]: [f32; 3]) -> f32 {
+    0.2126 * r + 0.7152 * g + 0.0722 * b
+}
+
+/// One value per pixel of an integer image, as a fraction of `max`: the gray channel, or
+/// the luma of R, G, B (alpha ignored).
+fn gray_values<P>(img: &image::ImageBuffer<P, Vec<P::Subpixel>>, max: f32) -> Vec<f32>
+where
+    P: image::Pixel,
+    P::Subpixel: Into<f32>,
+{
+    img.pixels()
+        .map(|p| {
+            let c = p.channels();
+            let v = |k: usize| c[k].into() / max;
+            if c.len() >= 3 {
+                luma([v(0), v(1), v(2)])
+            } else {
+                v(0)
+            }
+        })
+        .collect()
 }
