@@ -115,9 +115,15 @@ pub struct FieldArgs {
     /// Choppy waves: horizontal displacement factor λ (0: none; 1: trochoid-like)
     #[arg(long, value_name = "L", allow_hyphen_values = true)]
     pub choppiness: Option<String>,
-    /// Foam where the Jacobian of the choppy displacement is below this (default 0.3)
-    #[arg(long, value_name = "J", allow_hyphen_values = true)]
+    /// Foam where the Jacobian of the choppy displacement is below this; auto (default):
+    /// on the most compressed part of the sea equal to the wind's whitecap coverage
+    /// (Monahan), or J < 0.3 without a wind-driven spectrum
+    #[arg(long, value_name = "auto|J", allow_hyphen_values = true)]
     pub foam_threshold: Option<String>,
+    /// animate: seconds foam takes to fade after the surface stops compressing it
+    /// (default 2; 0: each frame's own foam)
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    pub foam_fade: Option<String>,
     /// Frames per second (animate; the per-frame filtered-noise phase modes)
     #[arg(long, value_name = "F", allow_hyphen_values = true)]
     pub fps: Option<String>,
@@ -156,6 +162,7 @@ impl FieldArgs {
             ("nonlinear", &self.nonlinear),
             ("choppiness", &self.choppiness),
             ("foam-threshold", &self.foam_threshold),
+            ("foam-fade", &self.foam_fade),
             ("fps", &self.fps),
             ("phase-mode", &self.phase_mode),
             ("sample-at", &self.sample_at),

@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::export::Staged;
 use crate::grid::GridSpec;
 use crate::io::{ImageKind, Loaded, ReadOptions, load_with};
+use crate::measure::foam::FoamRule;
 use crate::measure::jacobian::{JacobianStats, jacobian_stats};
 use crate::measure::waves::{SeaContext, WaveStats, wave_statistics};
 use crate::measure::{Analysis, Target, analyze};
@@ -194,7 +195,8 @@ fn sea_context(sidecar: Option<&Value>) -> SeaContext {
 /// The Jacobian statistics of the field in `file`: read from the Jacobian map beside it
 /// (`NAME.jacobian.tif`, else `NAME.jacobian.exr`) when there is one, else from the field
 /// its sidecar describes synthesized again when that is choppy. The threshold is the
-/// sidecar's `motion.foam_threshold`, else its default. `Ok(Err(note))`: none, and why.
+/// sidecar's `motion.foam_threshold` resolved over these J, else 0.3. `Ok(Err(note))`:
+/// none, and why.
 fn jacobian_of(
     file: &std::path::Path,
     loaded: &Loaded,
@@ -204,23 +206,24 @@ fn jacobian_of(
         .as_ref()
         .and_then(|d| d.get("params"))
         .and_then(|p| serde_json::from_value(p.clone()).ok());
-    let threshold = params
-        .as_ref()
-        .map_or(Params::default().motion.foam_threshold, |p| {
-            p.motion.foam_threshold
-        });
+    // The threshold of the maps: the sidecar's `motion.foam_threshold` resolved over
+    // these J (a quantile for "auto"), or 0.3 without parameters.
+    let rule = params.as_ref().map_or(
+        FoamRule::Threshold(crate::measure::foam::FALLBACK_THRESHOLD),
+        FoamRule::of,
+    );
     let spec = &loaded.grid.spec;
     for ext in ["jacobian.tif", "jacobian.exr"] {
         let path = file.with_extension(ext);
         if path.is_file() {
             let j = read_jacobian_map(&path, spec.nx, spec.ny)?;
-            return Ok(Ok(jacobian_stats(&j, threshold, "map")));
+            return Ok(Ok(jacobian_stats(&j, rule, "map")));
         }
     }
     let Some(params) = params.filter(|p| p.motion.choppiness != 0.0) else {
         return Ok(Err("not a choppy field".into()));
     };
-    Ok(regenerate_jacobian(&params, spec).map(|j| jacobian_stats(&j, threshold, "regenerated")))
+    Ok(regenerate_jacobian(&params, spec).map(|j| jacobian_stats(&j, rule, "regenerated")))
 }
 
 /// J of a Jacobian map written by seasynth: a one-channel float TIFF or an EXR's `Y`
@@ -292,9 +295,12 @@ fn regenerate_jacobian(params: &Params, spec: &GridSpec) -> Result<Vec<f32>, Str
 fn jacobian_report(j: &Result<JacobianStats, String>) -> String {
     match j {
         Ok(j) => format!(
-            "J: fraction below {} (foam) {:.5}, min {:.4} ({})\n",
+            "J: fraction below {:.4} (foam) {:.5}{}, min {:.4} ({})\n",
             j.threshold,
             j.fraction_below,
+            j.whitecap_coverage.map_or(String::new(), |w| format!(
+                " (auto: the whitecap coverage W {w:.5} of the wind, Monahan & O'Muircheartaigh 1980)"
+            )),
             j.min,
             match j.source {
                 "map" => "from the Jacobian map",

@@ -10,6 +10,9 @@
 //! only the time-dependent sines and cosines and the transforms. Frames are computed a few
 //! at a time in parallel, as many as the memory estimate allows, and the memory a frame
 //! frees is kept for the next (`pipeline::memory::keep_freed_memory`).
+//!
+//! Foam (`pipeline::foam_fade`): one threshold for the sequence, resolved over frame 0,
+//! and foam that persists and fades from frame to frame, the same bits in any run.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -24,6 +27,7 @@ use crate::export::maps::{self, MapContext, MapEncoding, MapKind};
 use crate::export::options::ExportOptions;
 use crate::export::{Format, HeightMapping, Staged, exr, png16, tiff32};
 use crate::field::{Synthesis, Synthesizer};
+use crate::pipeline::foam_fade::{self, FoamRecord, SequenceFoam};
 use crate::pipeline::jobs::{self, FileKind as Kind, Progress};
 use crate::pipeline::memory::keep_freed_memory;
 
@@ -51,6 +55,9 @@ struct SequenceDoc {
     mapping_min_m: f64,
     mapping_max_m: f64,
     mapping_source: String,
+    /// The foam of every frame: the threshold resolved once, the fade.
+    #[serde(default, skip_deserializing, skip_serializing_if = "Option::is_none")]
+    foam: Option<FoamRecord>,
     params: Params,
 }
 
@@ -150,6 +157,9 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         .into());
     }
     let synth = Synthesizer::new(&params, extras, true)?;
+    // Foam: one threshold for the sequence, and foam that persists and fades.
+    let mut foam = foam_fade::applies(&params, &map_kinds)
+        .then(|| SequenceFoam::new(&params, &synth, |k| params.time_s + k as f64 / fps));
     let quiet = args.quiet;
     let started = Instant::now();
     // One mapping for the whole sequence: given, kept from the earlier run, or the range
@@ -213,6 +223,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         mapping_min_m: mapping.min_m,
         mapping_max_m: mapping.max_m,
         mapping_source: source,
+        foam: foam.as_ref().map(|f| f.record.clone()),
         params: params.clone(),
     };
     Staged::create(&side_path)?.write_json(&doc)?;
@@ -224,9 +235,14 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                     .all(|&kind| frame_path(&args.dir, start + k, kind).is_file())
         })
         .collect();
+    if let Some(f) = foam.as_mut() {
+        f.start(&todo);
+    }
+    let foam = foam.as_ref();
     let bar = Progress::new(todo.len(), "frames", quiet, false);
     let cx_params = &params;
     let write_frame = |k: usize| -> Result<(), Error> {
+        let _foam_guard = foam.and_then(|f| f.guard(k));
         // Stage the frame's files first: a bad path fails before the work.
         let mut staged = Vec::new();
         for &kind in &kinds {
@@ -237,6 +253,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         }
         let syn: Synthesis = synth.frame(time_of(k));
         crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
+        let persistent_foam = foam.and_then(|f| f.persistent(k, &syn));
         for (kind, st) in staged {
             match kind {
                 Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
@@ -252,6 +269,8 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                         synthesis: &syn,
                         up: options.up,
                         exr: options.exr,
+                        foam_threshold: foam.map(|f| f.threshold()),
+                        persistent_foam: persistent_foam.as_deref(),
                     };
                     maps::write_map(m, e, st, &cx)?
                 }

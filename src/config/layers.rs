@@ -32,6 +32,7 @@ pub const FLAG_KEYS: &[(&str, &str)] = &[
     ("loop-period", "motion.loop_period_s"),
     ("choppiness", "motion.choppiness"),
     ("foam-threshold", "motion.foam_threshold"),
+    ("foam-fade", "motion.foam_fade_s"),
     ("fps", "motion.fps"),
     ("phase-mode", "motion.phase_mode"),
     ("sample-at", "grid.sample_at"),

@@ -390,12 +390,21 @@ impl Params {
                 m.choppiness,
             ));
         }
-        finite("--foam-threshold (motion.foam_threshold)", m.foam_threshold)?;
-        if !(m.foam_threshold > 0.0 && m.foam_threshold <= 2.0) {
+        if let Some(t) = m.foam_threshold.fixed() {
+            finite("--foam-threshold (motion.foam_threshold)", t)?;
+            if !(t > 0.0 && t <= 2.0) {
+                return Err(err(
+                    "--foam-threshold (motion.foam_threshold)",
+                    "auto, or a number > 0 and ≤ 2",
+                    t,
+                ));
+            }
+        }
+        if !(m.foam_fade_s.is_finite() && (0.0..=60.0).contains(&m.foam_fade_s)) {
             return Err(err(
-                "--foam-threshold (motion.foam_threshold)",
-                "> 0 and ≤ 2",
-                m.foam_threshold,
+                "--foam-fade (motion.foam_fade_s)",
+                "0 (off) … 60 s",
+                num(m.foam_fade_s),
             ));
         }
         positive("--fps (motion.fps)", " frames/s", m.fps)?;

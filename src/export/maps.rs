@@ -6,7 +6,7 @@
 //! | output name | content |
 //! |---|---|
 //! | `NAME.normal.png` | 8-bit RGB normal map: (r, g, b) = round(255·(n + 1)/2) with n = (nx, ny, nz), nx along +x (image right), ny along +y (image row index increasing), nz up. This is the OpenGL (+Y, "green up") convention when the image is loaded with row 0 at v = 0, as OpenGL does; flip green for DirectX. |
-//! | `NAME.foam.png` | 16-bit gray foam coverage: round(65535·clamp((T − J)/T, 0, 1)) with T the foam threshold: 0 where J ≥ T, full where the surface folds (J ≤ 0) |
+//! | `NAME.foam.png` | 16-bit gray foam coverage: round(65535·clamp((T − J)/T, 0, 1)) with T the foam threshold (`auto`: the quantile of J that covers the wind's whitecap fraction, [`crate::measure::foam`]): 0 where J ≥ T, full where the surface folds (J ≤ 0); in an animation with `--foam-fade`, the persistent foam |
 //! | `NAME.jacobian.tif` | 32-bit float J (1: undisturbed, < 0: folded) |
 //! | `NAME.disp.tif` | 32-bit float RGB: (λDx, λDy, h) in meters, the vertex displacement of choppy waves |
 //!
@@ -20,6 +20,9 @@ use tiff::encoder::{TiffEncoder, colortype};
 
 pub use super::format::{MapEncoding, MapKind};
 use crate::grid::GridSpec;
+pub use crate::measure::foam::{
+    FoamRule, ResolvedFoam, coverage as foam_coverage, coverage_u16 as foam_value,
+};
 
 /// What a wave-state map needs besides the state.
 pub struct MapContext<'a> {
@@ -29,6 +32,62 @@ pub struct MapContext<'a> {
     pub up: super::options::UpAxis,
     /// How EXR maps are written.
     pub exr: super::exr::ExrOptions,
+    /// The foam threshold T, resolved (an animation's, for the whole sequence); `None`:
+    /// resolved from this field's J by [`FoamRule::of`] the parameters.
+    pub foam_threshold: Option<f64>,
+    /// The foam of an animation that persists and fades (16-bit coverage,
+    /// `pipeline::foam_fade`), in place of this field's own.
+    pub persistent_foam: Option<&'a [u16]>,
+}
+
+impl MapContext<'_> {
+    /// The foam threshold of these maps over the J samples `j`.
+    fn threshold(&self, j: &[f32]) -> f64 {
+        self.foam_threshold
+            .unwrap_or_else(|| FoamRule::of(self.params).resolve(j).threshold)
+    }
+
+    /// The 16-bit foam coverage of the samples `j`.
+    fn foam_u16(&self, j: &[f32]) -> Vec<u16> {
+        match self.persistent_foam {
+            Some(p) => p.to_vec(),
+            None => {
+                let t = self.threshold(j);
+                j.iter().map(|&j| foam_value(j, t)).collect()
+            }
+        }
+    }
+
+    /// The foam coverage 0..1 of the samples `j`.
+    fn foam_f32(&self, j: &[f32]) -> Vec<f32> {
+        match self.persistent_foam {
+            Some(p) => p.iter().map(|&v| v as f32 / 65535.0).collect(),
+            None => {
+                let t = self.threshold(j);
+                j.iter().map(|&j| foam_coverage(j, t)).collect()
+            }
+        }
+    }
+}
+
+/// The foam coverage 0..1 at every grid point of a synthesized field and the threshold
+/// that made it (`motion.foam_threshold` resolved over this field's J), or `None` when
+/// the synthesis has no Jacobian (synthesize with `Extras { jacobian: true, .. }`).
+pub fn foam_coverage_of(
+    params: &crate::config::Params,
+    synthesis: &crate::field::Synthesis,
+) -> Option<(Vec<f32>, ResolvedFoam)> {
+    let j = synthesis
+        .surface
+        .jacobian
+        .as_ref()?
+        .values(synthesis.grid.spec.len());
+    let foam = FoamRule::of(params).resolve(&j);
+    let c = j
+        .iter()
+        .map(|&j| foam_coverage(j, foam.threshold))
+        .collect();
+    Some((c, foam))
 }
 
 /// The derived fields the given maps need (a displacement EXR carries foam when the sea
@@ -46,11 +105,6 @@ pub fn extras_for(kinds: &[(MapKind, MapEncoding)]) -> crate::field::dynamics::E
         }
     }
     e
-}
-
-/// Foam coverage 0..1 from J and the threshold T: clamp((T − J)/T, 0, 1).
-pub fn foam_coverage(j: f32, threshold: f64) -> f32 {
-    ((threshold - j as f64) / threshold).clamp(0.0, 1.0) as f32
 }
 
 /// The channels of a displacement EXR: R, G, B = (λDx, h, −λDy) for `--up y`, (λDx, λDy,
@@ -96,8 +150,7 @@ pub fn write_map(
                 .as_ref()
                 .ok_or_else(missing)?
                 .values(spec.len());
-            let t = cx.params.motion.foam_threshold;
-            let v: Vec<u16> = j.iter().map(|&j| foam_value(j, t)).collect();
+            let v = cx.foam_u16(&j);
             staged.write_with(|w| write_gray16(w, &spec, &v))
         }
         MapKind::Jacobian => {
@@ -138,7 +191,6 @@ fn write_map_exr(
         path: staged.path.clone(),
         message: "the state has no such field".into(),
     };
-    let t = cx.params.motion.foam_threshold;
     let jacobian = surf.jacobian.as_ref().map(|j| j.values(spec.len()));
     match kind {
         MapKind::Normal => {
@@ -152,7 +204,7 @@ fn write_map_exr(
         }
         MapKind::Foam => {
             let j = jacobian.ok_or_else(missing)?;
-            let f: Vec<f32> = j.iter().map(|&j| foam_coverage(j, t)).collect();
+            let f = cx.foam_f32(&j);
             let note = "foam coverage 0..1 = clamp((T - J)/T, 0, 1)";
             staged.write_with(|w| write_channels(w, size, &[("Y", &f)], cx.exr, note))
         }
@@ -175,7 +227,7 @@ fn write_map_exr(
             // Foam only where the displacement can fold the surface.
             let foam: Option<Vec<f32>> = jacobian
                 .filter(|_| cx.params.motion.choppiness != 0.0)
-                .map(|j| j.iter().map(|&j| foam_coverage(j, t)).collect());
+                .map(|j| cx.foam_f32(&j));
             let mut ch = vec![("R", &r[..]), ("G", &g[..]), ("B", &b[..])];
             if let Some(f) = &foam {
                 ch.push(("A", &f[..]));
@@ -199,12 +251,6 @@ pub fn normal_rgb(normals: &[[f32; 3]]) -> Vec<u8> {
         .iter()
         .flat_map(|n| n.map(|c| ((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0).round() as u8))
         .collect()
-}
-
-/// Foam coverage in 0..=65535 from J and the threshold T.
-pub fn foam_value(j: f32, threshold: f64) -> u16 {
-    let f = ((threshold - j as f64) / threshold).clamp(0.0, 1.0);
-    (f * 65535.0).round() as u16
 }
 
 /// A 16-bit grayscale PNG of `values` (row-major, `spec.nx` wide).

@@ -99,6 +99,10 @@ pub struct Sidecar<'a> {
     /// The job of a `seasynth batch` this output belongs to.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub batch: Option<&'a crate::export::sidecar::JobRecord>,
+    /// The foam threshold of the maps, resolved (`motion.foam_threshold` may be "auto"),
+    /// when the Jacobian was computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub foam: Option<crate::measure::foam::ResolvedFoam>,
     pub synthesis: &'a SynthesisInfo,
     pub params: &'a Params,
 }
@@ -168,6 +172,7 @@ impl<'a> Sidecar<'a> {
             geotiff: None,
             tiles_index: None,
             batch: None,
+            foam: None,
             synthesis: info,
             params,
         }

@@ -1,6 +1,7 @@
 //! Measuring a height field: statistics and the measured wavenumber spectrum, used by
 //! `seasynth analyze` and by the trochoid sea's fit of its turbulence.
 
+pub mod foam;
 pub mod jacobian;
 pub mod slopes;
 pub mod spectrum;

@@ -3,6 +3,7 @@
 //! memory guard. Commands call this layer; it never calls back.
 
 pub mod batch;
+pub mod foam_fade;
 pub mod jobs;
 pub mod memory;
 pub mod preview;

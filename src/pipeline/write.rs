@@ -220,6 +220,13 @@ pub fn write_field(
         || stats,
     );
     let grid = &synthesis.grid;
+    // The foam threshold of the maps, resolved once over this field's J.
+    let foam = synthesis
+        .surface
+        .jacobian
+        .as_ref()
+        .filter(|_| params.motion.choppiness != 0.0)
+        .map(|j| maps::FoamRule::of(params).resolve(&j.values(spec.len())));
 
     // The sidecars and tile indexes describe the outputs' layouts: built before the
     // outputs are written (and consumed), saved after them.
@@ -228,6 +235,7 @@ pub fn write_field(
     for (staged, index, outs) in staged_stems {
         let mut doc = Sidecar::new(params, &synthesis.info, stats);
         doc.batch = notes.batch;
+        doc.foam = foam;
         let mut uses_mapping = false;
         let mut sets = Vec::new();
         let stem_formats: Vec<Format> = outs.iter().map(|o| o.format()).collect();
@@ -292,6 +300,8 @@ pub fn write_field(
                     synthesis: &synthesis,
                     up: options.up,
                     exr: options.exr,
+                    foam_threshold: foam.map(|f| f.threshold),
+                    persistent_foam: None,
                 };
                 maps::write_map(kind, enc, staged, &cx)?;
             }
