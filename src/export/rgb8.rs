@@ -4,17 +4,14 @@
 use super::Staged;
 use crate::error::Error;
 
-/// Encodes an RGB buffer (`w`·`h`·3 bytes, rows top to bottom) into the staged file.
+/// Encodes an RGB buffer (`w`·`h`·3 bytes, rows top to bottom) into the staged file as
+/// PNG, through [`super::png_par`] (Up filter, pieces deflated in parallel).
 pub fn write(staged: Staged, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Error> {
+    use super::png_par::{Layout, PngWriter};
     staged.write_with(|out| {
-        let mut enc = png::Encoder::new(out, w, h);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-        writer
-            .write_image_data(rgb)
-            .map_err(std::io::Error::other)?;
-        writer.finish().map_err(std::io::Error::other)
+        let mut png = PngWriter::new(out, (w as usize, h as usize), Layout::Rgb8, &[])?;
+        png.write_rows(rgb)?;
+        png.finish().map(drop)
     })
 }
 
