@@ -88,7 +88,7 @@ pub fn write_map(
         MapKind::Normal => {
             let normals = surf.normals().ok_or_else(missing)?;
             let rgb = normal_rgb(&normals);
-            super::rgb8::write(staged, &rgb, (spec.nx as u32, spec.ny as u32))
+            super::rgb8::write_map(staged, &rgb, (spec.nx as u32, spec.ny as u32))
         }
         MapKind::Foam => {
             let j = surf
