@@ -364,6 +364,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         }
         println!("{maps_cost}");
         trochoid_rows(n, repeats, bare)?;
+        resampling_and_png_rows(&choppy, &args.dir, repeats, bare)?;
     }
     noise_bases(repeats);
     if args.exports {
@@ -412,6 +413,101 @@ fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
         "  trochoid samples per second on one core: {all:.1} M (trochoids + turbulence), {waves:.1} M (the {} trochoids alone), {noise:.1} M (turbulence and one trochoid)",
         params.trochoid.components
     );
+    Ok(())
+}
+
+/// The choppy height frame and its resampling, and the PNG writers of the height, normal
+/// and foam maps (each file's size beside it), as ratios to the bare FFT: a choppy sea
+/// (`choppy`, λ = 0.8) at the size being timed.
+fn resampling_and_png_rows(
+    choppy: &Params,
+    dir: &std::path::Path,
+    repeats: usize,
+    bare: Duration,
+) -> Result<()> {
+    use crate::export::maps::{normal_rgb, write_gray16};
+    use crate::export::{Staged, rgb8};
+    let all = field::dynamics::Extras {
+        slopes: true,
+        displacement: true,
+        jacobian: true,
+    };
+    let heights = field::Synthesizer::new(choppy, Default::default(), true)?;
+    let full = field::Synthesizer::new(choppy, all, true)?;
+    let frame = full.frame(1.0);
+    let spec = frame.grid.spec;
+    let n = spec.nx;
+    let d = frame
+        .surface
+        .displacement
+        .as_ref()
+        .context("a choppy frame has its displacement")?;
+    let still = frame
+        .surface
+        .undisplaced_height
+        .as_ref()
+        .context("a choppy frame with its displacement keeps the undisplaced heights")?;
+    println!(
+        "  choppy heights and map PNGs (λ = {}):",
+        choppy.motion.choppiness
+    );
+    print_row(
+        "choppy height frame",
+        time(repeats, || heights.frame(1.0)),
+        bare,
+    );
+    print_row(
+        "  of which: resampling",
+        time(repeats, || {
+            field::dynamics::resample_choppy(still, d, &spec)
+        }),
+        bare,
+    );
+    let st = frame.grid.stats();
+    let mapping = HeightMapping {
+        min_m: st.min_m,
+        max_m: st.max_m,
+    };
+    let normals = frame.surface.normals().context("slopes were asked for")?;
+    let rgb = normal_rgb(&normals);
+    let t = choppy.motion.foam_threshold;
+    let foam: Vec<u16> = frame
+        .surface
+        .jacobian
+        .as_ref()
+        .context("the Jacobian was asked for")?
+        .values(spec.len())
+        .iter()
+        .map(|&j| crate::export::maps::foam_value(j, t))
+        .collect();
+    let mut sizes = Vec::new();
+    let mut file = |name: &str, write: &mut dyn FnMut(Staged) -> crate::error::Result<()>| {
+        let path = dir.join(format!("bench-{n}.{name}.png"));
+        let d = time(repeats, || {
+            let staged = Staged::create(&path).expect("bench output is writable");
+            write(staged).expect("bench output is writable")
+        });
+        sizes.push((name.to_string(), std::fs::metadata(&path)?.len()));
+        anyhow::Ok(d)
+    };
+    let height = file("height", &mut |s| {
+        s.write_with(|w| crate::export::png16::write(w, &frame.grid, &mapping))
+    })?;
+    let normal = file("normal", &mut |s| {
+        rgb8::write_map(s, &rgb, (n as u32, spec.ny as u32))
+    })?;
+    let foam = file("foam", &mut |s| {
+        s.write_with(|w| write_gray16(w, &spec, &foam))
+    })?;
+    print_row("PNG 16-bit height (choppy)", height, bare);
+    print_row("PNG 8-bit RGB normal map", normal, bare);
+    print_row("PNG 16-bit foam map", foam, bare);
+    print_row("  the three map PNGs", height + normal + foam, bare);
+    let sizes: Vec<String> = sizes
+        .iter()
+        .map(|(k, b)| format!("{k} {:.2} MB", *b as f64 / 1e6))
+        .collect();
+    println!("  map PNG files: {}", sizes.join(", "));
     Ok(())
 }
 

@@ -142,7 +142,7 @@ pub fn write_map(
         MapKind::Normal => {
             let normals = surf.normals().ok_or_else(missing)?;
             let rgb = normal_rgb(&normals);
-            super::rgb8::write(staged, &rgb, (spec.nx as u32, spec.ny as u32))
+            super::rgb8::write_map(staged, &rgb, (spec.nx as u32, spec.ny as u32))
         }
         MapKind::Foam => {
             let j = surf
@@ -255,17 +255,15 @@ pub fn normal_rgb(normals: &[[f32; 3]]) -> Vec<u8> {
 
 /// A 16-bit grayscale PNG of `values` (row-major, `spec.nx` wide).
 pub fn write_gray16<W: Write>(w: W, spec: &GridSpec, values: &[u16]) -> std::io::Result<()> {
-    let mut enc = png::Encoder::new(w, spec.nx as u32, spec.ny as u32);
-    enc.set_color(png::ColorType::Grayscale);
-    enc.set_depth(png::BitDepth::Sixteen);
-    enc.set_compression(png::Compression::Fast);
-    enc.set_filter(png::Filter::Up);
-    let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
-    writer
-        .write_image_data(&bytes)
-        .map_err(std::io::Error::other)?;
-    writer.finish().map_err(std::io::Error::other)
+    use super::png_par::{Layout, PngWriter};
+    let mut png = PngWriter::new(w, (spec.nx, spec.ny), Layout::Gray16, &[])?;
+    let mut bytes = Vec::new();
+    for rows in values.chunks(spec.nx * 256) {
+        bytes.clear();
+        bytes.extend(rows.iter().flat_map(|v| v.to_be_bytes()));
+        png.write_rows(&bytes)?;
+    }
+    png.finish()?.flush()
 }
 
 /// A one-channel f32 TIFF.

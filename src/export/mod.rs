@@ -19,6 +19,7 @@ pub mod mesh;
 pub mod obj;
 pub mod options;
 pub mod png16;
+pub mod png_par;
 pub mod raw;
 pub mod rgb8;
 pub mod sidecar;

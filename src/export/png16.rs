@@ -1,12 +1,13 @@
 //! 16-bit grayscale PNG. Samples are big-endian as PNG requires; heights map to 0..65535 by
-//! the [`HeightMapping`] (recorded in the sidecar and in a `tEXt` chunk). Written with the
-//! png crate's fast deflate and the Up filter: ~3× faster than its default settings for a
-//! file ~13 % larger.
+//! the [`HeightMapping`] (recorded in the sidecar and in a `tEXt` chunk). Written by
+//! [`super::png_par`]: the Up filter and fdeflate's fast coder, in pieces of rows
+//! compressed in parallel.
 
 use std::io::Write;
 
 use rayon::prelude::*;
 
+use super::png_par::{Layout, PngWriter};
 use super::{Exporter, FieldOut, Format, HeightMapping, RowSink, WriteSeek};
 use crate::grid::{Grid, GridSpec};
 
@@ -63,39 +64,19 @@ pub fn write<W: Write>(w: W, grid: &Grid, mapping: &HeightMapping) -> std::io::R
     })
 }
 
-/// The encoder of a 16-bit grayscale height map: fast deflate, the Up filter, and the
-/// mapping in a `Description` text chunk.
-fn encoder<W: Write>(
-    w: W,
-    nx: usize,
-    ny: usize,
-    mapping: &HeightMapping,
-) -> std::io::Result<png::Encoder<'static, W>> {
-    let too_big = || std::io::Error::other("PNG sides are limited to 2^31 − 1 samples");
-    let mut enc = png::Encoder::new(
-        w,
-        u32::try_from(nx).map_err(|_| too_big())?,
-        u32::try_from(ny).map_err(|_| too_big())?,
-    );
-    enc.set_color(png::ColorType::Grayscale);
-    enc.set_depth(png::BitDepth::Sixteen);
-    enc.set_compression(png::Compression::Fast);
-    enc.set_filter(png::Filter::Up);
-    enc.add_text_chunk(
-        "Description".into(),
-        format!(
-            "seasynth height map: meters = {} + value * {} (0..65535); row 0 is y = 0",
-            mapping.min_m,
-            mapping.step_m()
-        ),
+/// The `Description` text chunk of a height map: its mapping.
+fn description(mapping: &HeightMapping) -> String {
+    format!(
+        "seasynth height map: meters = {} + value * {} (0..65535); row 0 is y = 0",
+        mapping.min_m,
+        mapping.step_m()
     )
-    .map_err(std::io::Error::other)?;
-    Ok(enc)
 }
 
 /// Writes the PNG of an `nx` × `ny` field batch by batch, holding one batch in memory:
 /// `fill(first_row, batch)` fills the heights of rows `first_row..` (`batch.len()/nx` of
-/// them, `batch_rows` except at the end). The pixels equal [`write`](fn@write)'s for the same field.
+/// them, `batch_rows` except at the end). The file's bytes do not depend on `batch_rows`
+/// (see [`super::png_par`]).
 pub fn write_rows<W: Write>(
     w: W,
     (nx, ny): (usize, usize),
@@ -103,12 +84,8 @@ pub fn write_rows<W: Write>(
     batch_rows: usize,
     mut fill: impl FnMut(usize, &mut [f32]) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
-    let mut writer = encoder(w, nx, ny, mapping)?
-        .write_header()
-        .map_err(std::io::Error::other)?;
-    let mut stream = writer
-        .stream_writer_with_size(1 << 20)
-        .map_err(std::io::Error::other)?;
+    let text = description(mapping);
+    let mut png = PngWriter::new(w, (nx, ny), Layout::Gray16, &[("Description", &text)])?;
     let batch_rows = batch_rows.max(1);
     let (mut heights, mut bytes) = (Vec::new(), Vec::new());
     let mut first = 0;
@@ -125,11 +102,10 @@ pub fn write_rows<W: Write>(
                     o.copy_from_slice(&mapping.encode(h).to_be_bytes());
                 }
             });
-        stream.write_all(&bytes)?;
+        png.write_rows(&bytes)?;
         first += rows;
     }
-    stream.finish().map_err(std::io::Error::other)?;
-    writer.finish().map_err(std::io::Error::other)
+    png.finish()?.flush()
 }
 
 /// Reads a 16-bit grayscale PNG: (width, height, samples row by row).

@@ -24,10 +24,14 @@
 //! # Choppy height map
 //! The displaced surface is (x0 + λD(x0), h(x0)). Its height at a grid point x is h(x0)
 //! with x0 solving x0 + λD(x0) = x, found by Newton's method on the bilinear, periodic
-//! interpolant of λD, starting from x0 = x − λD(x): the step is (I + λ∇D)⁻¹(x0 + λD(x0) − x)
-//! with the interpolant's own gradient, or the fixed-point step x0 ← x − λD(x0) where
-//! det(I + λ∇D) < 0.05 (near folds). At most `CHOPPY_ITERATIONS` steps, fewer once a step
-//! moves x0 by less than 1e-4 of a sample. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
+//! interpolant of λD. Each row is solved in four segments from left to right; a segment's
+//! first point starts from x0 = x − λD(x), every other point from its left neighbour's
+//! solution moved by one sample along x through the inverse Jacobian there
+//! (x0 − x changes by J⁻¹(1, 0) − (1, 0) per sample), which is within ~|∇²D| of the root.
+//! The step is (I + λ∇D)⁻¹(x0 + λD(x0) − x) with the interpolant's own gradient, or the
+//! fixed-point step x0 ← x − λD(x0) where det(I + λ∇D) < 0.05 (near folds). At most
+//! `CHOPPY_ITERATIONS` steps, fewer once Newton's step moves x0 by less than 1e-3 of a
+//! sample (it converges quadratically) or a fixed-point step by less than 1e-4. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
 //! (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
 use std::f64::consts::TAU;
@@ -45,9 +49,13 @@ pub const CHOPPY_ITERATIONS: usize = 8;
 /// Below this det J a step of the choppy resampling is a fixed-point step instead of
 /// Newton's (where the surface nearly folds, Newton's step is unbounded).
 const NEWTON_MIN_DET: f64 = 0.05;
-/// … which stops early once a step moves the point less than this, in samples (a height
-/// error below 1e-4·dx·|slope|).
+/// … which stops early once a fixed-point step moves the point less than this, in samples
+/// (a height error below 1e-4·dx·|slope|) …
 const CHOPPY_CONVERGED: f64 = 1e-4;
+/// … or once Newton's step moves it less than this: Newton converges quadratically, so
+/// the point is then within ~(|∇J|/2)·(1e-3)² ≪ 1e-4 samples of the root and one more
+/// step only confirms it.
+const NEWTON_CONVERGED: f64 = 1e-3;
 
 /// A derived field: the factor that multiplies h̃(k).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -392,24 +400,32 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
         .map(|(&u, &v)| [u * sx, v * sy])
         .collect();
     let mut out = vec![0.0f32; nx * ny];
+    // Each row in LANES segments solved side by side: their iterations are independent,
+    // so the processor overlaps their memory loads; along a segment each point starts
+    // from its left neighbour's solution.
     const LANES: usize = 4;
+    let seg = nx.div_ceil(LANES);
     out.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
-        // LANES points at a time: their iterations are independent, so the processor
-        // overlaps their memory loads.
-        for (c, chunk) in row.chunks_mut(LANES).enumerate() {
-            let y = j as f64;
-            let mut x = [0.0; LANES];
-            let mut x0 = [0.0; LANES];
-            let mut y0 = [0.0; LANES];
+        let y = j as f64;
+        // Per lane: the offset x0 − x of the last point solved and its derivative along x.
+        let mut last = [[0.0f64; 2]; LANES];
+        let mut slope = [[0.0f64; 2]; LANES];
+        for k in 0..seg {
+            let mut e = [[0.0f64; 2]; LANES];
             let mut done = [true; LANES];
-            for l in 0..chunk.len() {
-                let i = c * LANES + l;
-                x[l] = i as f64;
-                // First guess: the displacement at the grid point itself.
-                let [u, v] = d[j * nx + i];
-                x0[l] = x[l] - u as f64;
-                y0[l] = y - v as f64;
+            for l in 0..LANES {
+                let i = l * seg + k;
+                if i >= nx {
+                    continue;
+                }
                 done[l] = false;
+                e[l] = if k == 0 {
+                    // The displacement at the grid point itself.
+                    let [u, v] = d[j * nx + i];
+                    [-(u as f64), -(v as f64)]
+                } else {
+                    [last[l][0] + slope[l][0], last[l][1] + slope[l][1]]
+                };
             }
             for _ in 0..CHOPPY_ITERATIONS {
                 if done.iter().all(|&d| d) {
@@ -419,19 +435,42 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
                     if done[l] {
                         continue;
                     }
-                    let cell = Cell::new(nx, ny, x0[l], y0[l]);
-                    let (dx, dy) = newton_step(&cell, &d, x0[l] - x[l], y0[l] - y);
-                    x0[l] -= dx;
-                    y0[l] -= dy;
-                    done[l] = dx.abs().max(dy.abs()) < CHOPPY_CONVERGED;
+                    let x = (l * seg + k) as f64;
+                    let cell = Cell::new(nx, ny, x + e[l][0], y + e[l][1]);
+                    let step = newton_step(&cell, &d, e[l][0], e[l][1]);
+                    e[l][0] -= step.dx;
+                    e[l][1] -= step.dy;
+                    slope[l] = step.slope;
+                    let size = step.dx.abs().max(step.dy.abs());
+                    done[l] = size
+                        < if step.newton {
+                            NEWTON_CONVERGED
+                        } else {
+                            CHOPPY_CONVERGED
+                        };
                 }
             }
-            for (l, o) in chunk.iter_mut().enumerate() {
-                *o = Cell::new(nx, ny, x0[l], y0[l]).of(h) as f32;
+            for l in 0..LANES {
+                let i = l * seg + k;
+                if i < nx {
+                    row[i] = Cell::new(nx, ny, i as f64 + e[l][0], y + e[l][1]).of(h) as f32;
+                    last[l] = e[l];
+                }
             }
         }
     });
     out
+}
+
+/// One step of the choppy resampling.
+struct Step {
+    dx: f64,
+    dy: f64,
+    /// Whether it was Newton's step (else a fixed-point step).
+    newton: bool,
+    /// d(x0 − x)/dx = J⁻¹·(1, 0) − (1, 0) at this point: how the solution moves from one
+    /// grid point to the next along x (zero after a fixed-point step).
+    slope: [f64; 2],
 }
 
 /// One step toward the root of F(x0) = x0 + λD(x0) − x, given x0 − x = (`ex`, `ey`) in
@@ -439,7 +478,7 @@ pub fn resample_choppy(h: &[f32], displacement: &[Vec<f32>; 2], spec: &GridSpec)
 /// gradient of the bilinear interpolant, or the plain fixed-point step F where
 /// J = I + λ∇D is nearly singular or folded (det J < `NEWTON_MIN_DET`).
 #[inline(always)]
-fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> (f64, f64) {
+fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> Step {
     let v = cell.at.map(|p| d[p]);
     let (tx, ty) = (cell.tx, cell.ty);
     let mut value = [0.0; 2];
@@ -455,9 +494,20 @@ fn newton_step(cell: &Cell, d: &[[f32; 2]], ex: f64, ey: f64) -> (f64, f64) {
     let (j00, j01, j10, j11) = (1.0 + grad[0][0], grad[0][1], grad[1][0], 1.0 + grad[1][1]);
     let det = j00 * j11 - j01 * j10;
     if det < NEWTON_MIN_DET {
-        return (fx, fy);
+        return Step {
+            dx: fx,
+            dy: fy,
+            newton: false,
+            slope: [0.0; 2],
+        };
     }
-    ((j11 * fx - j01 * fy) / det, (j00 * fy - j10 * fx) / det)
+    let inv = 1.0 / det;
+    Step {
+        dx: (j11 * fx - j01 * fy) * inv,
+        dy: (j00 * fy - j10 * fx) * inv,
+        newton: true,
+        slope: [j11 * inv - 1.0, -j10 * inv],
+    }
 }
 
 /// Unit normals (x, y, z) of the surface (x0 + λD, h) at every grid point, z up: the

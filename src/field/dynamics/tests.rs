@@ -366,3 +366,86 @@ fn normals_with_one_reciprocal_square_root_agree_with_the_f64_divisions() {
     let up = normals(&[vec![0.0], vec![0.0]], Some([&[-1.0], &[-1.0], &[0.0]]));
     assert_eq!(up[0], [0.0, 0.0, 1.0]);
 }
+
+/// A periodic 2D displacement in samples (a few oblique waves, |∇λD| up to ~0.8, no
+/// folds) and heights, on a `nx` × `ny` grid of 1 m.
+fn oblique_waves(nx: usize, ny: usize) -> (Vec<f32>, [Vec<f32>; 2], GridSpec) {
+    let spec = GridSpec::new(nx, ny, nx as f64, ny as f64);
+    let waves = [
+        (3.0, 1.0, 0.9, 0.3),
+        (-2.0, 5.0, 0.5, 1.1),
+        (7.0, -4.0, 0.12, 2.0),
+    ];
+    let (mut h, mut dx, mut dy) = (vec![0.0; nx * ny], vec![0.0; nx * ny], vec![0.0; nx * ny]);
+    for j in 0..ny {
+        for i in 0..nx {
+            let p = j * nx + i;
+            for &(mx, my, amp, phase) in &waves {
+                let (kx, ky) = (TAU * mx / nx as f64, TAU * my / ny as f64);
+                let k = (kx * kx + ky * ky).sqrt();
+                // Amplitude in samples such that |∇D| stays about 0.8 at most together.
+                let a = amp * 0.3 / k;
+                let arg = kx * i as f64 + ky * j as f64 + phase;
+                h[p] += (a * arg.cos()) as f32;
+                dx[p] -= (a * kx / k * arg.sin()) as f32;
+                dy[p] -= (a * ky / k * arg.sin()) as f32;
+            }
+        }
+    }
+    (h, [dx, dy], spec)
+}
+
+#[test]
+fn choppy_resampling_solves_each_point_as_a_long_newton_solve() {
+    // Reference: from the plain first guess x − λD(x), 60 Newton steps on the same
+    // bilinear interpolant, then h there. The resampling's continuation and early stop
+    // must land within 1e-4 samples · max|∇h| of it.
+    let (nx, ny) = (96, 80);
+    let (h, d, spec) = oblique_waves(nx, ny);
+    let got = resample_choppy(&h, &d, &spec);
+    let ds: Vec<[f32; 2]> = d[0].iter().zip(&d[1]).map(|(&u, &v)| [u, v]).collect();
+    let mut worst: f64 = 0.0;
+    let mut max_slope: f64 = 0.0;
+    for j in 0..ny {
+        for i in 0..nx {
+            let p = j * nx + i;
+            let (x, y) = (i as f64, j as f64);
+            let (mut ex, mut ey) = (-(ds[p][0] as f64), -(ds[p][1] as f64));
+            for _ in 0..60 {
+                let cell = Cell::new(nx, ny, x + ex, y + ey);
+                let s = newton_step(&cell, &ds, ex, ey);
+                assert!(s.newton, "no folds in this field");
+                ex -= s.dx;
+                ey -= s.dy;
+            }
+            let want = Cell::new(nx, ny, x + ex, y + ey).of(&h);
+            worst = worst.max((got[p] as f64 - want).abs());
+            let i1 = (i + 1) % nx;
+            max_slope = max_slope.max((h[j * nx + i1] as f64 - h[p] as f64).abs());
+        }
+    }
+    eprintln!("resampling vs long Newton: {worst:.2e} m (max slope {max_slope:.3} m/sample)");
+    assert!(
+        worst <= 1e-4 * max_slope + 2e-7,
+        "resampled height off by {worst:.2e} m"
+    );
+}
+
+#[test]
+fn choppy_resampling_is_the_same_on_one_and_four_threads() {
+    let (h, d, spec) = oblique_waves(203, 64);
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| resample_choppy(&h, &d, &spec))
+    };
+    let (one, four) = (on(1), on(4));
+    assert!(
+        one.iter()
+            .zip(&four)
+            .all(|(a, b)| a.to_bits() == b.to_bits()),
+        "bit-identical across thread counts"
+    );
+}
