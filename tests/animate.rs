@@ -249,11 +249,15 @@ fn exr_sequences_start_at_frame_one_and_each_file_is_generate_at_its_time() {
             "z",
             "--exr-compression",
             "zip",
+            "--foam-fade",
+            "0",
             "-o",
             "seq",
         ]),
     );
     let doc = json_file(&d.join("seq/sequence.json"));
+    // The foam (the displacement EXR's A) has the sequence's threshold, resolved once.
+    let t = num(&doc, "/foam/threshold_resolved").to_string();
     assert_eq!(
         (doc["start_frame"].as_u64(), doc["up"].as_str()),
         (Some(1), Some("z"))
@@ -267,6 +271,8 @@ fn exr_sequences_start_at_frame_one_and_each_file_is_generate_at_its_time() {
         "0.5",
         "--time",
         "0.2",
+        "--foam-threshold",
+        &t,
         "-o",
         "g.exr",
         "-o",
