@@ -7,14 +7,17 @@
 //!
 //! Frame k is bit for bit the field of `generate --time t_k` with the same parameters:
 //! the random draws are made once and kept (`field::Synthesizer`), and each frame redoes
-//! only the time-dependent sines and cosines and the transforms. Frames are computed a few
-//! at a time in parallel, as many as the memory estimate allows, and the memory a frame
-//! frees is kept for the next (`pipeline::memory::keep_freed_memory`).
+//! only the time-dependent sines and cosines and the transforms. The frames are split into
+//! `--jobs` runs of consecutive frames (as many as the memory estimate allows), each
+//! computed in order while the frame before it is written, its files at once
+//! (`pipeline::jobs::run_overlapped`); the memory a frame frees is kept for the next
+//! (`pipeline::memory::keep_freed_memory`).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cli::AnimateArgs;
@@ -114,15 +117,16 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     }
     let mut extras = maps::extras_for(&map_kinds);
     extras.slopes |= kinds.contains(&Kind::Preview);
-    // Frames run `jobs` at a time, as many as the memory estimate allows; the draws are
-    // kept for the whole sequence (16 bytes a sample, measured).
+    // Frames run `jobs` at a time, as many as the memory estimate allows, each with the
+    // frame before it being written (two frames a job); the draws are kept for the whole
+    // sequence (16 bytes a sample, measured).
     let n = params.grid_spec().len() as u64;
     let per_frame = crate::pipeline::memory::Footprint::of_field(&params, extras)
         .with_outputs(kinds.len() as u64);
-    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 1));
+    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 2));
     let [nx, ny] = params.grid.size.0;
     crate::limits::check_memory(
-        per_frame.bytes(n, jobs as u64).saturating_add(16 * n),
+        per_frame.bytes(n, 2 * jobs as u64).saturating_add(16 * n),
         &format!("{jobs} {nx}x{ny} {} frame(s) at once", params.method.name()),
         args.field.force,
     )?;
@@ -226,8 +230,9 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         .collect();
     let bar = Progress::new(todo.len(), "frames", quiet, false);
     let cx_params = &params;
-    let write_frame = |k: usize| -> Result<(), Error> {
-        // Stage the frame's files first: a bad path fails before the work.
+    // Frame k's files, staged first (a bad path fails before the work), and its field.
+    let compute = |i: usize| -> Result<(Vec<(Kind, Staged)>, Synthesis), Error> {
+        let k = todo[i];
         let mut staged = Vec::new();
         for &kind in &kinds {
             staged.push((
@@ -237,34 +242,40 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         }
         let syn: Synthesis = synth.frame(time_of(k));
         crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
-        for (kind, st) in staged {
-            match kind {
-                Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
-                Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
-                Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr))?,
-                Kind::Preview => {
-                    let img = crate::pipeline::preview::preview_of(cx_params, &syn)?;
-                    crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
-                }
-                Kind::Map(m, e) => {
-                    let cx = MapContext {
-                        params: cx_params,
-                        synthesis: &syn,
-                        up: options.up,
-                        exr: options.exr,
-                    };
-                    maps::write_map(m, e, st, &cx)?
-                }
+        Ok((staged, syn))
+    };
+    let write_file = |kind: Kind, st: Staged, syn: &Synthesis| -> Result<(), Error> {
+        match kind {
+            Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping)),
+            Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid)),
+            Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr)),
+            Kind::Preview => {
+                let img = crate::pipeline::preview::preview_of(cx_params, syn)?;
+                crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))
+            }
+            Kind::Map(m, e) => {
+                let cx = MapContext {
+                    params: cx_params,
+                    synthesis: syn,
+                    up: options.up,
+                    exr: options.exr,
+                };
+                maps::write_map(m, e, st, &cx)
             }
         }
-        bar.finished(&format!("frame {}", start + k));
+    };
+    // The files of a frame are written at once, while the next frame is computed.
+    let write = |i: usize, (staged, syn): (Vec<(Kind, Staged)>, Synthesis)| {
+        staged
+            .into_par_iter()
+            .map(|(kind, st)| write_file(kind, st, &syn))
+            .collect::<Result<(), Error>>()?;
+        bar.finished(&format!("frame {}", start + todo[i]));
         Ok(())
     };
-    let results = jobs::run_pool(todo.len(), jobs, |i| write_frame(todo[i]));
+    let result = jobs::run_overlapped(todo.len(), jobs, compute, write);
     bar.finish();
-    for r in results {
-        r?;
-    }
+    result?;
     if !quiet {
         let secs = started.elapsed().as_secs_f64();
         eprintln!(
