@@ -267,6 +267,11 @@ pub struct BenchArgs {
     /// (writes files of up to 3.7 GB in --dir, each removed after timing)
     #[arg(long)]
     pub exports: bool,
+    /// Also time 48-frame `animate` sequences at 1024² (choppy displacement + foam, the
+    /// same as half-float ZIP EXR, height PNG + normal + foam), with Blender's ocean bake
+    /// of the same frames beside them when `blender` is on the PATH
+    #[arg(long)]
+    pub sequence: bool,
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
