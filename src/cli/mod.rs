@@ -121,7 +121,7 @@ pub struct FieldArgs {
     #[arg(long, value_name = "auto|J", allow_hyphen_values = true)]
     pub foam_threshold: Option<String>,
     /// animate: seconds foam takes to fade after the surface stops compressing it
-    /// (default 2; 0: each frame's own foam)
+    /// (default 0: each frame's own foam; 1–3 s lingers like a host's foam fade)
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub foam_fade: Option<String>,
     /// Frames per second (animate; the per-frame filtered-noise phase modes)
@@ -274,6 +274,11 @@ pub struct BenchArgs {
     /// (writes files of up to 3.7 GB in --dir, each removed after timing)
     #[arg(long)]
     pub exports: bool,
+    /// Also time 48-frame `animate` sequences at 1024² (choppy displacement + foam, the
+    /// same as half-float ZIP EXR, height PNG + normal + foam), with Blender's ocean bake
+    /// of the same frames beside them when `blender` is on the PATH
+    #[arg(long)]
+    pub sequence: bool,
     /// Worker threads (default: all cores)
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,

@@ -7,17 +7,21 @@
 //!
 //! Frame k is bit for bit the field of `generate --time t_k` with the same parameters:
 //! the random draws are made once and kept (`field::Synthesizer`), and each frame redoes
-//! only the time-dependent sines and cosines and the transforms. Frames are computed a few
-//! at a time in parallel, as many as the memory estimate allows, and the memory a frame
-//! frees is kept for the next (`pipeline::memory::keep_freed_memory`).
+//! only the time-dependent sines and cosines and the transforms. The frames are split into
+//! `--jobs` runs of consecutive frames (as many as the memory estimate allows), each
+//! computed in order while the frame before it is written, its files at once
+//! (`pipeline::jobs::run_overlapped`); the memory a frame frees is kept for the next
+//! (`pipeline::memory::keep_freed_memory`).
 //!
 //! Foam (`pipeline::foam_fade`): one threshold for the sequence, resolved over frame 0,
-//! and foam that persists and fades from frame to frame, the same bits in any run.
+//! and, with `--foam-fade`, foam that persists and fades from frame to frame, the same
+//! bits in any run (such a sequence is computed as one run, in frame order).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::cli::AnimateArgs;
@@ -30,6 +34,9 @@ use crate::field::{Synthesis, Synthesizer};
 use crate::pipeline::foam_fade::{self, FoamRecord, SequenceFoam};
 use crate::pipeline::jobs::{self, FileKind as Kind, Progress};
 use crate::pipeline::memory::keep_freed_memory;
+
+/// A computed frame: its staged files, its field and its persistent foam.
+type Frame = (Vec<(Kind, Staged)>, Synthesis, Option<Vec<u16>>);
 
 /// The sequence sidecar, `DIR/sequence.json`.
 #[derive(Debug, Serialize, Deserialize)]
@@ -121,15 +128,16 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     }
     let mut extras = maps::extras_for(&map_kinds);
     extras.slopes |= kinds.contains(&Kind::Preview);
-    // Frames run `jobs` at a time, as many as the memory estimate allows; the draws are
-    // kept for the whole sequence (16 bytes a sample, measured).
+    // Frames run `jobs` at a time, as many as the memory estimate allows, each with the
+    // frame before it being written (two frames a job); the draws are kept for the whole
+    // sequence (16 bytes a sample, measured).
     let n = params.grid_spec().len() as u64;
     let per_frame = crate::pipeline::memory::Footprint::of_field(&params, extras)
         .with_outputs(kinds.len() as u64);
-    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 1));
+    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 2));
     let [nx, ny] = params.grid.size.0;
     crate::limits::check_memory(
-        per_frame.bytes(n, jobs as u64).saturating_add(16 * n),
+        per_frame.bytes(n, 2 * jobs as u64).saturating_add(16 * n),
         &format!("{jobs} {nx}x{ny} {} frame(s) at once", params.method.name()),
         args.field.force,
     )?;
@@ -241,9 +249,11 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     let foam = foam.as_ref();
     let bar = Progress::new(todo.len(), "frames", quiet, false);
     let cx_params = &params;
-    let write_frame = |k: usize| -> Result<(), Error> {
+    // Frame k's files, staged first (a bad path fails before the work), its field and
+    // its persistent foam (computed in frame order: see `pipeline::foam_fade`).
+    let compute = |i: usize| -> Result<Frame, Error> {
+        let k = todo[i];
         let _foam_guard = foam.and_then(|f| f.guard(k));
-        // Stage the frame's files first: a bad path fails before the work.
         let mut staged = Vec::new();
         for &kind in &kinds {
             staged.push((
@@ -254,36 +264,52 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         let syn: Synthesis = synth.frame(time_of(k));
         crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
         let persistent_foam = foam.and_then(|f| f.persistent(k, &syn));
-        for (kind, st) in staged {
-            match kind {
-                Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping))?,
-                Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid))?,
-                Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr))?,
-                Kind::Preview => {
-                    let img = crate::pipeline::preview::preview_of(cx_params, &syn)?;
-                    crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))?
-                }
-                Kind::Map(m, e) => {
-                    let cx = MapContext {
-                        params: cx_params,
-                        synthesis: &syn,
-                        up: options.up,
-                        exr: options.exr,
-                        foam_threshold: foam.map(|f| f.threshold()),
-                        persistent_foam: persistent_foam.as_deref(),
-                    };
-                    maps::write_map(m, e, st, &cx)?
-                }
+        Ok((staged, syn, persistent_foam))
+    };
+    let write_file = |kind: Kind,
+                      st: Staged,
+                      syn: &Synthesis,
+                      persistent_foam: Option<&[u16]>|
+     -> Result<(), Error> {
+        match kind {
+            Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping)),
+            Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid)),
+            Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr)),
+            Kind::Preview => {
+                let img = crate::pipeline::preview::preview_of(cx_params, syn)?;
+                crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))
+            }
+            Kind::Map(m, e) => {
+                let cx = MapContext {
+                    params: cx_params,
+                    synthesis: syn,
+                    up: options.up,
+                    exr: options.exr,
+                    foam_threshold: foam.map(|f| f.threshold()),
+                    persistent_foam,
+                };
+                maps::write_map(m, e, st, &cx)
             }
         }
-        bar.finished(&format!("frame {}", start + k));
+    };
+    // The files of a frame are written at once, while the next frame is computed.
+    let write = |i: usize, (staged, syn, persistent_foam): Frame| {
+        staged
+            .into_par_iter()
+            .map(|(kind, st)| write_file(kind, st, &syn, persistent_foam.as_deref()))
+            .collect::<Result<(), Error>>()?;
+        bar.finished(&format!("frame {}", start + todo[i]));
         Ok(())
     };
-    let results = jobs::run_pool(todo.len(), jobs, |i| write_frame(todo[i]));
+    // Persistent foam makes each frame wait for the one before it: one run, in order.
+    let runs = if foam.is_some_and(|f| f.fades()) {
+        1
+    } else {
+        jobs
+    };
+    let result = jobs::run_overlapped(todo.len(), runs, compute, write);
     bar.finish();
-    for r in results {
-        r?;
-    }
+    result?;
     if !quiet {
         let secs = started.elapsed().as_secs_f64();
         eprintln!(

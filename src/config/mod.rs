@@ -182,7 +182,7 @@ impl Default for MotionParams {
             loop_period_s: None,
             choppiness: 0.0,
             foam_threshold: FoamThreshold::Auto,
-            foam_fade_s: 2.0,
+            foam_fade_s: 0.0,
             fps: 30.0,
             phase_mode: PhaseMode::Dispersion,
             hot_air_dominant_rad: 0.05,

@@ -235,6 +235,11 @@ impl<'a> SequenceFoam<'a> {
         }
     }
 
+    /// Whether foam persists from frame to frame (each frame then needs the one before).
+    pub fn fades(&self) -> bool {
+        self.fade.is_some()
+    }
+
     /// The threshold of every frame.
     pub fn threshold(&self) -> f64 {
         self.record.resolved.threshold

@@ -134,6 +134,89 @@ pub fn run_pool<T: Send>(count: usize, workers: usize, f: impl Fn(usize) -> T + 
         .collect()
 }
 
+/// `count` items split into `workers` runs of consecutive items, in order (the first runs
+/// one longer when they do not divide evenly), none empty.
+pub fn consecutive_runs(count: usize, workers: usize) -> Vec<std::ops::Range<usize>> {
+    let runs = workers.clamp(1, count.max(1));
+    let (each, longer) = (count / runs, count % runs);
+    let mut start = 0;
+    (0..runs)
+        .map(|r| {
+            let len = each + usize::from(r < longer);
+            start += len;
+            start - len..start
+        })
+        .filter(|r| !r.is_empty())
+        .collect()
+}
+
+/// Runs `compute(i)` then `write(i, result)` for every i < `count`, overlapping the two:
+/// the items are split into `workers` runs of consecutive items ([`consecutive_runs`]),
+/// each run computes its items in order on its own thread and hands each result to a
+/// writer thread of its own, so that item i + 1 is computed while item i is written. A
+/// run has at most two items alive at once (one written, one computed; the hand-over
+/// waits for the writer). Both closures may use the rayon pool. A run stops at its first
+/// error; the first error in run order is returned (within a run, a write's error comes
+/// before the computation's, which is of a later item).
+pub fn run_overlapped<T: Send, E: Send>(
+    count: usize,
+    workers: usize,
+    compute: impl Fn(usize) -> Result<T, E> + Sync,
+    write: impl Fn(usize, T) -> Result<(), E> + Sync,
+) -> Result<(), E> {
+    let runs = consecutive_runs(count, workers);
+    let (compute, write) = (&compute, &write);
+    let results: Vec<Result<(), E>> = std::thread::scope(|s| {
+        let handles: Vec<_> = runs
+            .into_iter()
+            .map(|run| s.spawn(move || overlapped_run(run, compute, write)))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect()
+    });
+    results.into_iter().collect()
+}
+
+/// One run of [`run_overlapped`].
+fn overlapped_run<T: Send, E: Send>(
+    run: std::ops::Range<usize>,
+    compute: &(impl Fn(usize) -> Result<T, E> + Sync),
+    write: &(impl Fn(usize, T) -> Result<(), E> + Sync),
+) -> Result<(), E> {
+    // A rendezvous channel: the next item is handed over only when the writer takes it.
+    let (hand, take) = std::sync::mpsc::sync_channel::<(usize, T)>(0);
+    std::thread::scope(|s| {
+        let writer = s.spawn(move || {
+            for (i, item) in take {
+                write(i, item)?;
+            }
+            Ok(())
+        });
+        let mut computed = Ok(());
+        for i in run {
+            match compute(i) {
+                // A closed channel: the writer has stopped at an error.
+                Ok(item) => {
+                    if hand.send((i, item)).is_err() {
+                        break;
+                    }
+                }
+                Err(e) => {
+                    computed = Err(e);
+                    break;
+                }
+            }
+        }
+        drop(hand);
+        let written = writer
+            .join()
+            .unwrap_or_else(|p| std::panic::resume_unwind(p));
+        written.and(computed)
+    })
+}
+
 /// One 16-bit mapping over many fields: the smallest min and largest max of `ranges`
 /// (`None` when there is none).
 pub fn union_range(ranges: impl IntoIterator<Item = (f64, f64)>) -> Option<HeightMapping> {
@@ -235,6 +318,101 @@ mod tests {
             assert_eq!(out, (0..17).map(|i| i * i).collect::<Vec<_>>());
         }
         assert!(run_pool(0, 2, |i| i).is_empty());
+    }
+
+    #[test]
+    fn consecutive_runs_cover_every_item_once_in_order() {
+        for (count, workers) in [(17, 1), (17, 3), (17, 4), (2, 5), (0, 2), (6, 6)] {
+            let runs = consecutive_runs(count, workers);
+            let all: Vec<usize> = runs.iter().flat_map(|r| r.clone()).collect();
+            assert_eq!(
+                all,
+                (0..count).collect::<Vec<_>>(),
+                "{count} over {workers}"
+            );
+            assert!(runs.len() <= workers.max(1));
+            assert!(runs.iter().all(|r| !r.is_empty()));
+            let lens: Vec<usize> = runs.iter().map(|r| r.len()).collect();
+            let (lo, hi) = (lens.iter().min(), lens.iter().max());
+            assert!(hi.zip(lo).is_none_or(|(h, l)| h - l <= 1), "{lens:?}");
+        }
+    }
+
+    #[test]
+    fn overlapped_runs_write_every_item_in_order_with_two_alive_at_most() {
+        for workers in [1, 2, 5] {
+            let alive = AtomicUsize::new(0);
+            let most = AtomicUsize::new(0);
+            let written = Mutex::new(Vec::new());
+            let r: Result<(), ()> = run_overlapped(
+                23,
+                workers,
+                |i| {
+                    let now = alive.fetch_add(1, Ordering::SeqCst) + 1;
+                    most.fetch_max(now, Ordering::SeqCst);
+                    Ok(i * 10)
+                },
+                |i, v| {
+                    assert_eq!(v, i * 10);
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                    written.lock().unwrap().push(i);
+                    alive.fetch_sub(1, Ordering::SeqCst);
+                    Ok(())
+                },
+            );
+            assert_eq!(r, Ok(()));
+            let mut w = written.into_inner().unwrap();
+            // Each run writes its items in order.
+            for run in consecutive_runs(23, workers) {
+                let of_run: Vec<usize> = w.iter().copied().filter(|i| run.contains(i)).collect();
+                assert_eq!(of_run, run.collect::<Vec<_>>());
+            }
+            w.sort();
+            assert_eq!(w, (0..23).collect::<Vec<_>>());
+            let bound = 2 * consecutive_runs(23, workers).len();
+            assert!(most.load(Ordering::SeqCst) <= bound, "{workers} workers");
+        }
+    }
+
+    #[test]
+    fn overlapped_runs_stop_at_the_first_error_of_either_stage() {
+        let written = Mutex::new(Vec::new());
+        let r = run_overlapped(
+            10,
+            1,
+            |i| {
+                if i == 6 {
+                    Err(format!("compute {i}"))
+                } else {
+                    Ok(i)
+                }
+            },
+            |i, _| {
+                written.lock().unwrap().push(i);
+                Ok(())
+            },
+        );
+        assert_eq!(r, Err("compute 6".to_string()));
+        assert_eq!(*written.lock().unwrap(), (0..6).collect::<Vec<_>>());
+        let computed = AtomicUsize::new(0);
+        let r = run_overlapped(
+            10,
+            1,
+            |i| {
+                computed.fetch_add(1, Ordering::SeqCst);
+                Ok(i)
+            },
+            |i, _| {
+                if i == 3 {
+                    Err(format!("write {i}"))
+                } else {
+                    Ok(())
+                }
+            },
+        );
+        assert_eq!(r, Err("write 3".to_string()));
+        // Item 4 may have been computed before the writer stopped, not more.
+        assert!(computed.load(Ordering::SeqCst) <= 5);
     }
 
     #[test]
