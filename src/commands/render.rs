@@ -12,7 +12,9 @@ use crate::export::{Allowed, Staged};
 use crate::grid::Grid;
 use crate::render::camera::{Camera, View, triple};
 use crate::render::shade::{PSEUDO_EXPONENT, Reflection, WATER_INDEX, sun_direction};
-use crate::render::{MAX_IMAGE_SIDE, MAX_SPP, RenderOptions, lighting_for, scene_of};
+use crate::render::{
+    MAX_IMAGE_SIDE, MAX_SPP, Maps, Material, RenderOptions, lighting_for, scene_of,
+};
 
 /// Renders with fewer rays than this show no progress bar.
 const PROGRESS_MIN_RAYS: u64 = 1 << 20;
@@ -242,9 +244,17 @@ fn parse_reflection(s: &str) -> Result<Reflection, ParamError> {
     }
 }
 
-/// The field to render: read (`--from`) or synthesized, its wind direction (radians)
-/// and whether it is periodic.
-fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
+/// The field to render: read (`--from`) or synthesized, its wind direction (radians),
+/// whether it is periodic, its material and its foam coverage (synthesized choppy fields).
+struct Field {
+    grid: Grid,
+    wind_dir_rad: f64,
+    periodic: bool,
+    material: Material,
+    foam: Option<Vec<f32>>,
+}
+
+fn field(args: &RenderArgs) -> Result<Field, Error> {
     let Some(from) = &args.from else {
         let params = crate::commands::common::resolve_params(&args.field)?;
         let [nx, ny] = params.grid.size.0;
@@ -253,12 +263,18 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
             &format!("rendering a {nx}x{ny} {} field", params.method.name()),
             args.field.force,
         )?;
-        let synthesis = crate::field::synthesize(&params)?;
-        return Ok((
-            synthesis.grid,
-            params.wind.direction_deg.to_radians(),
-            crate::field::method_for(&params).is_periodic(),
-        ));
+        let extras = crate::pipeline::preview::preview_extras(&params);
+        let synthesis =
+            crate::field::Synthesizer::new(&params, extras, false)?.frame(params.time_s);
+        crate::limits::check_finite(&synthesis.grid.stats(), "the synthesized field")?;
+        let foam = crate::pipeline::preview::foam_coverage(&synthesis, &params);
+        return Ok(Field {
+            grid: synthesis.grid,
+            wind_dir_rad: params.wind.direction_deg.to_radians(),
+            periodic: crate::field::method_for(&params).is_periodic(),
+            material: crate::pipeline::preview::material_of(&params),
+            foam,
+        });
     };
     let f = &args.field;
     if let Some(flag) = f
@@ -285,12 +301,20 @@ fn field(args: &RenderArgs) -> Result<(Grid, f64, bool), Error> {
         .and_then(|d| d.get("params"))
         .and_then(|v| serde_json::from_value(v.clone()).ok());
     Ok(match params {
-        Some(p) => (
+        Some(p) => Field {
             grid,
-            p.wind.direction_deg.to_radians(),
-            crate::field::method_for(&p).is_periodic(),
-        ),
-        None => (grid, 0.0, false),
+            wind_dir_rad: p.wind.direction_deg.to_radians(),
+            periodic: crate::field::method_for(&p).is_periodic(),
+            material: crate::pipeline::preview::material_of(&p),
+            foam: None,
+        },
+        None => Field {
+            grid,
+            wind_dir_rad: 0.0,
+            periodic: false,
+            material: Material::Water,
+            foam: None,
+        },
     })
 }
 
@@ -320,7 +344,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // The output is staged before any work: a bad path fails now, and an error later
     // leaves no partial file.
     let staged = Staged::create_checked(&args.output, &PREVIEWS, &[])?;
-    let (grid, wind_dir_rad, periodic) = field(&args)?;
+    let Field {
+        grid,
+        wind_dir_rad,
+        periodic,
+        material,
+        foam,
+    } = field(&args)?;
     let wrap = req.repeat.unwrap_or(periodic);
     let scene = scene_of(&grid, wind_dir_rad, wrap);
     let camera = req.camera(&scene).map_err(Error::from)?;
@@ -341,6 +371,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         lighting,
         repeat: req.repeat,
         lod: req.lod,
+        material,
         ..RenderOptions::new(camera)
     };
     let rays = req.width as u64 * req.height as u64 * req.spp as u64;
@@ -350,7 +381,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         !args.quiet && rays >= PROGRESS_MIN_RAYS,
     );
     let start = Instant::now();
-    let image = crate::render::render_with_progress(&grid, None, periodic, &opts, &|n| bar.inc(n))?;
+    let maps = Maps {
+        slopes: None,
+        foam: foam.as_deref(),
+    };
+    let image = crate::render::render_maps(&grid, &maps, periodic, &opts, &|n| bar.inc(n))?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     crate::export::rgb8::write_by_name(staged, &image.rgb, (image.width, image.height))?;

@@ -639,4 +639,25 @@ pub(crate) mod tests {
         assert!(pos > 2.0 && pos <= 2.5, "{pos}");
         assert_eq!(peak_bin(&[0.0, 0.0, 0.0]), None);
     }
+
+    /// The `swell` preset is long-crested: the wavevectors around its peak share one axis
+    /// (the second circular moment |E e^{2iθ}| near 1), more so than with the swell
+    /// term at ξ = 1.
+    #[test]
+    fn the_swell_preset_is_long_crested() {
+        const LONG_CRESTED: f64 = 0.95;
+        let concentration = |xi: Option<f64>| {
+            let mut p = crate::config::Params::preset("swell").unwrap();
+            p.grid.size = crate::config::Size2([256, 256]);
+            if let Some(xi) = xi {
+                p.spectrum.swell = xi;
+            }
+            let s = crate::field::synthesize(&p).unwrap();
+            analyze(&s.grid, None).peak_direction_concentration.unwrap()
+        };
+        let (now, before) = (concentration(None), concentration(Some(1.0)));
+        eprintln!("second circular moment at the peak: {now:.4} (ξ = 1: {before:.4})");
+        assert!(now > LONG_CRESTED, "{now}");
+        assert!(now > before);
+    }
 }

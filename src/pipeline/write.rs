@@ -85,6 +85,11 @@ fn needed_extras(
     let mut extras = maps::extras_for(&kinds);
     let meshes = formats.iter().any(|f| f.is_mesh());
     extras.slopes |= (meshes && crate::pipeline::preview::exact_slopes_apply(params)) || previews;
+    if previews {
+        let p = crate::pipeline::preview::preview_extras(params);
+        extras.jacobian |= p.jacobian;
+        extras.displacement |= p.displacement;
+    }
     extras
 }
 

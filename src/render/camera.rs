@@ -158,11 +158,11 @@ impl Projection {
 /// The named camera placements.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum View {
-    /// Low over the sea at the upwind edge of the field, looking down-wind, the horizon in
-    /// the upper third (the default).
+    /// Low over the sea at the upwind edge of the field, looking down-wind 7° down, the
+    /// horizon in the upper third, 0.12 peak wavelengths above the mean (the default).
     Grazing,
-    /// Above the upwind side, 0.45 field sizes from the center, looking down-wind at it
-    /// 30° below the horizontal.
+    /// Above the upwind side, 4 peak wavelengths (at most 0.45 field sizes) from the
+    /// center, looking down-wind at it 30° below the horizontal.
     Aerial,
     /// Straight down over the field's center, +x right and +y up, high enough to see
     /// the whole field.
@@ -188,7 +188,17 @@ pub struct Scene {
     pub hs_m: f64,
     /// Direction the wind blows toward, from +x toward +y, radians.
     pub wind_dir_rad: f64,
+    /// The dominant wavelength λp (the peak of the measured spectrum), meters: the scale
+    /// the grazing and aerial views are framed by.
+    pub peak_wavelength_m: f64,
 }
+
+/// Grazing view: camera height above the mean, in peak wavelengths (the image's center
+/// ray, 7° down, meets the sea 8.1 such heights ahead: about one λp).
+pub const GRAZING_HEIGHT_PER_WAVELENGTH: f64 = 0.12;
+/// Aerial view: distance to the point looked at, in peak wavelengths (at most 0.45 field
+/// sizes).
+pub const AERIAL_DISTANCE_PER_WAVELENGTH: f64 = 4.0;
 
 impl View {
     pub fn from_name(name: &str) -> Result<View, ParamError> {
@@ -231,7 +241,16 @@ impl View {
         let fov_x = fov_x_rad;
         match self {
             View::Grazing => {
-                let above = (1.5 * scene.hs_m).max(0.006 * size).max(1.0);
+                // Framed by λp: the sea ahead is the same number of wavelengths whatever
+                // its scale, so its steepness shows. The center ray meets the mean
+                // 8.1 heights ahead: inside a field that does not repeat, it stays within
+                // 90 % of the field's length along the wind (2·reach).
+                let tan_pitch = 7f64.to_radians().tan();
+                let mut above = GRAZING_HEIGHT_PER_WAVELENGTH * scene.peak_wavelength_m;
+                if reach.is_finite() {
+                    above = above.min(0.9 * 2.0 * reach * tan_pitch);
+                }
+                let above = above.max(1e-3 * size);
                 Camera {
                     position_m: [
                         center[0] - wc * reach,
@@ -245,7 +264,8 @@ impl View {
             }
             View::Aerial => {
                 let pitch = 30f64.to_radians();
-                let distance = 0.45 * size;
+                let distance =
+                    (AERIAL_DISTANCE_PER_WAVELENGTH * scene.peak_wavelength_m).min(0.45 * size);
                 Camera {
                     position_m: [
                         center[0] - wc * distance * pitch.cos(),
@@ -403,6 +423,7 @@ mod tests {
             max_m: 2.0,
             hs_m: 1.2,
             wind_dir_rad: 30f64.to_radians(),
+            peak_wavelength_m: 40.0,
         };
         for (name, view) in VIEWS {
             let c = view.camera(&scene, 640, 360, view.fov_x_rad());
@@ -418,5 +439,46 @@ mod tests {
             );
             assert!(c.position_m[2] > scene.max_m, "{name}: above the crests");
         }
+    }
+
+    /// The grazing and aerial views scale with the peak wavelength, not with Hs: a sea
+    /// 40 times larger (sizes, heights and λp) is seen from 40 times as far, and a
+    /// steeper sea of the same λp from the same place.
+    #[test]
+    fn views_are_framed_by_the_peak_wavelength() {
+        let small = Scene {
+            size_m: [256.0, 256.0],
+            mean_m: 0.0,
+            max_m: 0.4,
+            hs_m: 0.4,
+            wind_dir_rad: 0.0,
+            peak_wavelength_m: 13.0,
+        };
+        let big = Scene {
+            size_m: small.size_m.map(|v| 40.0 * v),
+            max_m: 40.0 * small.max_m,
+            hs_m: 40.0 * small.hs_m,
+            peak_wavelength_m: 40.0 * small.peak_wavelength_m,
+            ..small
+        };
+        let steep = Scene {
+            max_m: 1.0,
+            hs_m: 1.0,
+            ..small
+        };
+        for view in [View::Grazing, View::Aerial] {
+            let a = view.camera(&small, 640, 360, view.fov_x_rad());
+            let b = view.camera(&big, 640, 360, view.fov_x_rad());
+            let c = view.camera(&steep, 640, 360, view.fov_x_rad());
+            for k in 0..3 {
+                assert!((b.position_m[k] - 40.0 * a.position_m[k]).abs() < 1e-9 * b.position_m[2]);
+            }
+            assert_eq!(
+                a.position_m, c.position_m,
+                "{view:?}: Hs does not move the camera"
+            );
+        }
+        let g = View::Grazing.camera(&small, 640, 360, 1.0);
+        assert!((g.position_m[2] - GRAZING_HEIGHT_PER_WAVELENGTH * 13.0).abs() < 1e-12);
     }
 }

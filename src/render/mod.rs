@@ -7,8 +7,10 @@
 //! mean mip levels, so the horizon does not shimmer. Normals come from the slopes
 //! ∂h/∂x, ∂h/∂y: central differences of the samples, or exact slope arrays when the caller
 //! has them. Each hit is lit after Li, He & Gong (2015) with a Fresnel-weighted sky
-//! reflection ([`shade`]). A periodic field repeats to the horizon; any other sits in a
-//! flat sea at its mean height.
+//! reflection ([`shade`]), foam coverage drawn as whitecaps, or as terrain (diffuse rock,
+//! grass and snow) for terrains. A periodic field repeats to the horizon; any other sits in
+//! a flat sea at its mean height. The default views are framed by the field's peak
+//! wavelength ([`peak_wavelength_m`]), so the steepness of the sea shows.
 //!
 //! Conventions are in [`camera`] (axes, yaw, pitch) and [`shade`] (colors). Every pixel is
 //! computed on its own by the same operations whatever the number of threads, so images
@@ -51,6 +53,29 @@ pub struct RenderOptions {
     pub lod: bool,
     /// Rays end here (they show the sky), meters.
     pub max_distance_m: f64,
+    /// Water (sky reflection, sun glitter, whitecaps) or terrain (diffuse rock, grass, snow).
+    pub material: Material,
+}
+
+/// How the surface is shaded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Material {
+    /// The sea of [`shade`]: height color, spray, Fresnel sky reflection, sun glitter;
+    /// foam coverage, when given, as whitecaps.
+    #[default]
+    Water,
+    /// Land: albedo by height and slope (grass, rock, snow), lit diffusely by the sun and
+    /// the sky; no reflection.
+    Terrain,
+}
+
+/// Per-sample maps that go with a field, row-major like it.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Maps<'a> {
+    /// Exact ∂h/∂x and ∂h/∂y (`None`: central differences).
+    pub slopes: Option<(&'a [f32], &'a [f32])>,
+    /// Foam coverage in [0, 1], drawn as whitecaps (`None`: no foam).
+    pub foam: Option<&'a [f32]>,
 }
 
 /// A rendered image: 8-bit sRGB, rows top to bottom, and the distance to the sea seen
@@ -93,11 +118,12 @@ impl RenderOptions {
             repeat: None,
             lod: true,
             max_distance_m: f64::INFINITY,
+            material: Material::Water,
         }
     }
 
     /// The default preview of `field`: the grazing view down-wind (`wind_dir_rad`, from
-    /// +x toward +y), the lighting of [`lighting_for`].
+    /// +x toward +y) framed by its peak wavelength, the lighting of [`lighting_for`].
     pub fn preview(field: &Grid, wind_dir_rad: f64, periodic: bool) -> Self {
         let scene = scene_of(field, wind_dir_rad, periodic);
         let camera = View::Grazing.camera(&scene, 1280, 720, View::Grazing.fov_x_rad());
@@ -160,13 +186,68 @@ pub fn scene_of(field: &Grid, wind_dir_rad: f64, periodic: bool) -> Scene {
         (s.nx.saturating_sub(1), s.ny.saturating_sub(1))
     };
     let stats = field.stats();
+    let size_m = [cx as f64 * s.dx_m(), cy as f64 * s.dy_m()];
     Scene {
-        size_m: [cx as f64 * s.dx_m(), cy as f64 * s.dy_m()],
+        size_m,
         mean_m: stats.mean_m,
         max_m: stats.max_m,
         hs_m: stats.hs_m,
         wind_dir_rad,
+        peak_wavelength_m: peak_wavelength_m(field, periodic),
     }
+}
+
+/// Largest side of the copy of a field whose spectrum gives its peak wavelength.
+const PEAK_SIDE: usize = 512;
+
+/// The wavelength of the peak of `field`'s measured omnidirectional spectrum S(k)
+/// ([`crate::measure::spectrum`]), meters: the field block-averaged to at most
+/// [`PEAK_SIDE`]² samples (a low-pass that keeps the peak of any field whose peak
+/// wavelength spans several blocks), with a Hann window when it is not periodic (its
+/// edges would otherwise add power at the lowest wavenumbers). Kept between 8 sample
+/// spacings and the field's size; the field's size for a flat field.
+pub fn peak_wavelength_m(field: &Grid, periodic: bool) -> f64 {
+    let s = field.spec;
+    let size = s.extent_x_m.max(s.extent_y_m);
+    let (bx, by) = (s.nx.div_ceil(PEAK_SIDE), s.ny.div_ceil(PEAK_SIDE));
+    let (nx, ny) = (s.nx / bx, s.ny / by);
+    if nx < 4 || ny < 4 {
+        return size;
+    }
+    let spec = crate::grid::GridSpec::new(
+        nx,
+        ny,
+        s.dx_m() * (nx * bx) as f64,
+        s.dy_m() * (ny * by) as f64,
+    );
+    let mean = field.stats().mean_m;
+    let hann = |i: usize, n: usize| {
+        if periodic {
+            1.0
+        } else {
+            (std::f64::consts::PI * (i as f64 + 0.5) / n as f64)
+                .sin()
+                .powi(2)
+        }
+    };
+    let data: Vec<f32> = (0..nx * ny)
+        .map(|k| {
+            let (i, j) = (k % nx, k / nx);
+            let mut sum = 0.0f64;
+            for b in 0..by {
+                let row = field.row(j * by + b);
+                for a in 0..bx {
+                    sum += row[i * bx + a] as f64 - mean;
+                }
+            }
+            (sum / (bx * by) as f64 * hann(i, nx) * hann(j, ny)) as f32
+        })
+        .collect();
+    let low = s.dx_m().max(s.dy_m()) * 8.0;
+    crate::measure::spectrum::analyze(&Grid::new(spec, data), None)
+        .peak_wavelength_m
+        .filter(|l| l.is_finite())
+        .map_or(size, |l| l.clamp(low.min(size), size))
 }
 
 /// The default lighting for a camera over `scene`: the sun 20° to the left of the look
@@ -235,6 +316,19 @@ pub fn render_with_progress(
     opts: &RenderOptions,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<RgbImage, Error> {
+    let maps = Maps { slopes, foam: None };
+    render_maps(field, &maps, periodic, opts, progress)
+}
+
+/// [`render_with_progress`] with the field's [`Maps`]: exact slopes and foam coverage.
+pub fn render_maps(
+    field: &Grid,
+    maps: &Maps,
+    periodic: bool,
+    opts: &RenderOptions,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<RgbImage, Error> {
+    let slopes = maps.slopes;
     opts.validate()?;
     let (nx, ny) = (field.spec.nx, field.spec.ny);
     if nx < 2 || ny < 2 {
@@ -266,6 +360,29 @@ pub fn render_with_progress(
     };
     let pyr = Pyramid::new(field, sx, sy, wrap);
     check_above_surface(&pyr, &opts.camera)?;
+    let foam = match maps.foam {
+        Some(f) if f.len() != nx * ny => {
+            return Err(err(
+                "the foam coverage",
+                &format!("{} values, one per sample", nx * ny),
+                f.len(),
+            )
+            .into());
+        }
+        // The coverage as a surface of its own: its mean levels low-pass it like the
+        // heights, by the ray's footprint.
+        Some(f) if opts.material == Material::Water && f.iter().any(|&v| v > 0.0) => {
+            let zero = vec![0.0f32; nx * ny];
+            Some(Pyramid::new(
+                &Grid::new(field.spec, f.to_vec()),
+                &zero,
+                &zero,
+                wrap,
+            ))
+        }
+        _ => None,
+    };
+    let cell_w = (pyr.dx_m * pyr.dy_m).sqrt();
     let stats = field.stats();
     let scale = HeightScale {
         mean_m: stats.mean_m,
@@ -303,7 +420,26 @@ pub fn render_with_progress(
                     let c = match tracer.trace(&ray) {
                         Some(hit) => {
                             nearest = nearest.min(hit.t);
-                            light.sea(dir, hit.t, hit.height_m, hit.normal(), &scale)
+                            match opts.material {
+                                Material::Water => {
+                                    let cover = foam.as_ref().map_or(0.0, |f| {
+                                        let level =
+                                            footprint_level(lod.angle_rad, dir, hit.t, cell_w);
+                                        foam_at(f, hit.point, level)
+                                    });
+                                    light.sea_with_foam(
+                                        dir,
+                                        hit.t,
+                                        hit.height_m,
+                                        hit.normal(),
+                                        &scale,
+                                        cover,
+                                    )
+                                }
+                                Material::Terrain => {
+                                    light.terrain(dir, hit.t, hit.height_m, hit.normal(), &scale)
+                                }
+                            }
                         }
                         None => light.background(dir),
                     };
@@ -324,6 +460,27 @@ pub fn render_with_progress(
         rgb,
         distance_m,
     })
+}
+
+/// The mean level λ = log2(w/cell) a ray along `dir` sees at distance `t_m`, w its
+/// footprint (as the tracer computes it; 0 without the low-pass).
+fn footprint_level(angle_rad: f64, dir: [f64; 3], t_m: f64, cell_m: f64) -> f64 {
+    let w = angle_rad / dir[2].abs().max(0.01).sqrt() / cell_m * t_m;
+    if w > 1.0 { w.log2() } else { 0.0 }
+}
+
+/// Foam coverage at (x, y) on mean level λ (blended between ⌊λ⌋ and ⌊λ⌋ + 1), in [0, 1].
+fn foam_at(f: &Pyramid, p: [f64; 3], level: f64) -> f64 {
+    let l = level.floor();
+    let frac = level - l;
+    let l = l as usize;
+    let a = f.surface(l, p[0], p[1])[0];
+    let c = if frac > 0.0 {
+        a + (f.surface(l + 1, p[0], p[1])[0] - a) * frac
+    } else {
+        a
+    };
+    c.clamp(0.0, 1.0)
 }
 
 /// The height of the surface the tracer sees under (x, y): the field, its repeats, or the

@@ -13,8 +13,19 @@
 //!    report's pseudo-reflection w = 1 − (n·v)^C.
 //! 4. **Sun specular**: w = (max(r·s, 0))^shininess toward the sun's color, s the unit
 //!    direction toward the sun (none when the sun is below the horizon).
-//! 5. **Haze**: w = 1 − exp(−t/haze distance) toward the sky's horizon color, t the
+//! 5. **Whitecaps**: w = min(1, c/0.1), c ∈ [0, 1] the foam coverage clamp((T − J)/T, 0, 1)
+//!    of a choppy field (foam hides the water where J is 10 % of T below T), toward foam,
+//!    a rough white surface: albedo (0.92, 0.94, 0.95) lit diffusely,
+//!    0.75 + 0.3·max(n·s, 0)/max(s_z, 0.2) (a flat patch under the sun gets the sum
+//!    whatever the sun's height), no reflection or glitter.
+//! 6. **Haze**: w = 1 − exp(−t/haze distance) toward the sky's horizon color, t the
 //!    distance from the camera.
+//!
+//! **Terrain** (the `fractal` spectrum's fields) replaces steps 1–5: the albedo is grass
+//! (0.30, 0.42, 0.20) below the mapped height 0.2, rock (0.45, 0.42, 0.38) above and on
+//! slopes steeper than 35° (n_z < cos 35°, blended over 10°), snow (0.95, 0.96, 0.98) above
+//! the mapped height 0.6 where the slope is under 40°, each change blended smoothly; lit by
+//! a sky ambient 0.35 plus the sun's Lambert term 0.9·max(n·s, 0)/max(s_z, 0.2), then haze.
 //!
 //! The sky is a gradient from the horizon color to the zenith color, w = (d_z)^0.5 for a
 //! ray going up (the horizon color below), plus a small sun disc. Colors are given as
@@ -34,6 +45,16 @@ pub enum Reflection {
 pub const WATER_INDEX: f64 = 1.33;
 /// The exponent C of the pseudo-reflection suggested by Li, He & Gong.
 pub const PSEUDO_EXPONENT: f64 = 0.3;
+/// Light on foam from the sky, and from the sun on a patch facing it (× foam albedo).
+pub const FOAM_AMBIENT: f64 = 0.75;
+pub const FOAM_SUN: f64 = 0.3;
+/// The foam coverage at which foam hides the water (J this fraction of T below T).
+pub const FOAM_OPAQUE: f64 = 0.1;
+/// The foam's albedo (sRGB).
+pub const FOAM_ALBEDO: [f64; 3] = [0.92, 0.94, 0.95];
+/// Light on terrain from the sky, and from the sun on a patch facing it (× albedo).
+pub const TERRAIN_AMBIENT: f64 = 0.35;
+pub const TERRAIN_SUN: f64 = 0.9;
 
 /// Colors and lights (see the module docs). Colors are linear RGB; build them from sRGB
 /// values with [`srgb`].
@@ -190,6 +211,12 @@ impl Lighting {
         n: [f64; 3],
         scale: &HeightScale,
     ) -> [f64; 3] {
+        let c = self.sea_unhazed(d, h_m, n, scale);
+        self.haze(c, d, t_m)
+    }
+
+    /// Steps 1–4 of the module docs.
+    fn sea_unhazed(&self, d: [f64; 3], h_m: f64, n: [f64; 3], scale: &HeightScale) -> [f64; 3] {
         let hm = scale.map(h_m);
         let mut c = mix(self.deep_color, self.crest_color, 0.5 * (hm + 1.0));
         let spray = smoothstep(self.spray_start, 1.0, hm);
@@ -214,7 +241,63 @@ impl Lighting {
                 highlight(dot(r, self.sun_dir), self.shininess),
             );
         }
-        self.haze(c, d, t_m)
+        c
+    }
+
+    /// [`sea`](Self::sea) with foam coverage `cover` ∈ [0, 1] drawn as whitecaps (step 5 of
+    /// the module docs).
+    pub fn sea_with_foam(
+        &self,
+        d: [f64; 3],
+        t_m: f64,
+        h_m: f64,
+        n: [f64; 3],
+        scale: &HeightScale,
+        cover: f64,
+    ) -> [f64; 3] {
+        if cover <= 0.0 {
+            return self.sea(d, t_m, h_m, n, scale);
+        }
+        let water = self.sea_unhazed(d, h_m, n, scale);
+        let light = FOAM_AMBIENT + FOAM_SUN * self.sun_on(n);
+        let foam = srgb(FOAM_ALBEDO).map(|a| a * light);
+        self.haze(mix(water, foam, (cover / FOAM_OPAQUE).min(1.0)), d, t_m)
+    }
+
+    /// The sun's diffuse light on a patch of normal `n`, 1 for a flat patch (0 without sun).
+    fn sun_on(&self, n: [f64; 3]) -> f64 {
+        if self.sun_dir[2] <= 0.0 {
+            return 0.0;
+        }
+        dot(n, self.sun_dir).max(0.0) / self.sun_dir[2].max(0.2)
+    }
+
+    /// Land at distance `t_m` along `d`, height `h` and normal `n` (see the module docs).
+    pub fn terrain(
+        &self,
+        d: [f64; 3],
+        t_m: f64,
+        h_m: f64,
+        n: [f64; 3],
+        scale: &HeightScale,
+    ) -> [f64; 3] {
+        let hm = scale.map(h_m);
+        let grass = srgb([0.30, 0.42, 0.20]);
+        let rock = srgb([0.45, 0.42, 0.38]);
+        let snow = srgb([0.95, 0.96, 0.98]);
+        let (cos35, cos45, cos40, cos30) = (
+            35f64.to_radians().cos(),
+            45f64.to_radians().cos(),
+            40f64.to_radians().cos(),
+            30f64.to_radians().cos(),
+        );
+        let steep = 1.0 - smoothstep(cos45, cos35, n[2]);
+        let high = smoothstep(0.1, 0.3, hm);
+        let mut albedo = mix(grass, rock, high.max(steep));
+        let snowy = smoothstep(0.5, 0.7, hm) * smoothstep(cos40, cos30, n[2]);
+        albedo = mix(albedo, snow, snowy);
+        let light = TERRAIN_AMBIENT + TERRAIN_SUN * self.sun_on(n);
+        self.haze(albedo.map(|a| a * light), d, t_m)
     }
 
     /// `c` seen through the haze over `t_m` meters along `d`.

@@ -752,4 +752,120 @@ mod tests {
             assert_eq!(a.to_bits(), b.to_bits(), "sample {i}");
         }
     }
+
+    /// The normalized autocorrelation R(τ) = C(τ)/C(0) of `g`'s deviations from its mean,
+    /// C(τ) the mean product over the samples that overlap at lag τ (a linear, not
+    /// circular, autocorrelation: zero-padded FFTs), for lags |τx|, |τy| ≤ half the
+    /// window; the largest R at lags at least `r0_m` long.
+    fn largest_autocorrelation_beyond(g: &Grid, r0_m: f64) -> (f64, [f64; 2]) {
+        use rustfft::FftPlanner;
+        use rustfft::num_complex::Complex64;
+        let (nx, ny) = (g.spec.nx, g.spec.ny);
+        let (px, py) = (2 * nx, 2 * ny);
+        let mean = g.stats().mean_m;
+        let mut planner = FftPlanner::<f64>::new();
+        let (fx, fy) = (planner.plan_fft_forward(px), planner.plan_fft_forward(py));
+        let (ix, iy) = (planner.plan_fft_inverse(px), planner.plan_fft_inverse(py));
+        // 2D transform of a px × py buffer (rows along x), forward or inverse.
+        let transform = |buf: &mut Vec<Complex64>, forward: bool| {
+            let (rx, ry) = if forward { (&fx, &fy) } else { (&ix, &iy) };
+            for row in buf.chunks_mut(px) {
+                rx.process(row);
+            }
+            let mut col = vec![Complex64::new(0.0, 0.0); py];
+            for i in 0..px {
+                for j in 0..py {
+                    col[j] = buf[j * px + i];
+                }
+                ry.process(&mut col);
+                for j in 0..py {
+                    buf[j * px + i] = col[j];
+                }
+            }
+        };
+        let padded = |f: &dyn Fn(usize, usize) -> f64| {
+            let mut b = vec![Complex64::new(0.0, 0.0); px * py];
+            for j in 0..ny {
+                for i in 0..nx {
+                    b[j * px + i] = Complex64::new(f(i, j), 0.0);
+                }
+            }
+            b
+        };
+        let mut h = padded(&|i, j| g.data[j * nx + i] as f64 - mean);
+        let mut ones = padded(&|_, _| 1.0);
+        for (b, forward) in [(&mut h, true), (&mut ones, true)] {
+            transform(b, forward);
+        }
+        for b in [&mut h, &mut ones] {
+            for v in b.iter_mut() {
+                *v = Complex64::new(v.norm_sqr(), 0.0);
+            }
+            transform(b, false);
+        }
+        let at = |b: &Vec<Complex64>, tx: i64, ty: i64| {
+            b[ty.rem_euclid(py as i64) as usize * px + tx.rem_euclid(px as i64) as usize].re
+        };
+        let c0 = at(&h, 0, 0) / at(&ones, 0, 0);
+        let (hx, hy) = (nx as i64 / 2, ny as i64 / 2);
+        let mut best = (f64::NEG_INFINITY, [0.0, 0.0]);
+        for ty in -hy..=hy {
+            for tx in -hx..=hx {
+                let lag = [tx as f64 * g.spec.dx_m(), ty as f64 * g.spec.dy_m()];
+                if lag[0].hypot(lag[1]) < r0_m {
+                    continue;
+                }
+                let r = at(&h, tx, ty) / at(&ones, tx, ty) / c0;
+                if r > best.0 {
+                    best = (r, lag);
+                }
+            }
+        }
+        best
+    }
+
+    /// Thon's sea in a window of 4 km (8 tiles of the selection matrix): with every
+    /// component on its cell's centre the sum repeats every tile side L, a lattice of
+    /// copies whose autocorrelation is 1 at lag L; placed at random inside their cells
+    /// the components have no common period, and the autocorrelation beyond the central
+    /// lobe stays far below it.
+    #[test]
+    fn the_trochoid_sea_has_no_secondary_autocorrelation_peak() {
+        // The largest autocorrelation allowed at lags of a peak wavelength or more.
+        const SECONDARY_PEAK_MAX: f64 = 0.6;
+        for seed in [1, 2, 3] {
+            let mut p = Params::preset("thon-2000").unwrap();
+            p.seed = seed;
+            p.grid.size = Size2([512, 512]);
+            p.grid.extent_m = Extent2([4096.0, 4096.0]);
+            p.trochoid.turbulence = false;
+            let sea = TrochoidSea::new(&p).unwrap();
+            let tile = sea.info().matrix_extent_m;
+            assert!(tile < 4096.0 / 4.0, "the window holds several tiles");
+            let lambda_p = tile / MATRIX_PEAK_WAVELENGTHS;
+            let spec = p.grid_spec();
+            let (now, now_lag) = largest_autocorrelation_beyond(&sea.grid(&spec, 0.0), lambda_p);
+            // The old placement, on the cell centres, fails the same measure.
+            let mut centred = sea.clone();
+            let dk = std::f64::consts::TAU / tile;
+            for c in centred.components.iter_mut() {
+                c.k = (c.index.0 as f64 * dk, c.index.1 as f64 * dk);
+            }
+            let (old, old_lag) =
+                largest_autocorrelation_beyond(&centred.grid(&spec, 0.0), lambda_p);
+            eprintln!(
+                "seed {seed}: largest autocorrelation beyond {lambda_p:.0} m: {now:.3} at {now_lag:?} m (in-cell), {old:.3} at {old_lag:?} m (cell centres, tile {tile:.0} m)"
+            );
+            // Within a sample of a multiple of the tile on each axis.
+            let on_lattice = |v: f64| (v / tile - (v / tile).round()).abs() * tile <= spec.dx_m();
+            assert!(
+                old > SECONDARY_PEAK_MAX && old_lag.iter().all(|&v| on_lattice(v)),
+                "seed {seed}: the centred components repeat every tile: {old} at {old_lag:?}"
+            );
+            assert!(
+                now < SECONDARY_PEAK_MAX,
+                "seed {seed}: a secondary peak {now} at {now_lag:?} m"
+            );
+        }
+    }
 }

@@ -7,8 +7,17 @@
 //! as the FFT methods use it).
 //! In the FFT sum, the cell's wave has amplitude 2|h̃0(k)| and travels along +k, so the
 //! component gets the expected amplitude A = 2√P(k) (its variance A²/2 = 2P(k) is the
-//! cell's share of the field's), the direction of k, ω from the dispersion relation, and a
-//! random phase hashed from (seed, n, m). Cells are ranked by P, ties by (n, m).
+//! cell's share of the field's) and a random phase hashed from (seed, n, m). Cells are
+//! ranked by P, ties by (n, m).
+//!
+//! **Placement inside the cell.** On the cell centres 2π(n, m)/L every component repeats
+//! over the tile, so the whole sum would repeat every L (3 peak wavelengths by default: a
+//! regular lattice of look-alike patches in any window larger than the tile). Thon et al.
+//! sample the spectrum cell by cell, so a cell's energy may sit anywhere in it: each
+//! component's wavevector is the centre plus (u, v)·(Δkx, Δky) with u, v uniform in
+//! [−½, ½) hashed from (seed, n, m) apart from the phase, ω from the dispersion relation
+//! at that wavevector. The sum then has no period and its autocorrelation no secondary
+//! peak (tested in the parent module).
 
 use crate::field::fft::SpectrumSetup;
 use crate::rng;
@@ -69,7 +78,7 @@ pub fn select(setup: &SpectrumSetup, size: usize, count: usize, seed: u64) -> Ve
         .take(count)
         .filter(|&(_, p)| p > 0.0)
         .map(|((n, m), p)| {
-            let (kx, ky) = setup.wavevector(n, m);
+            let (kx, ky) = in_cell(setup, seed, n, m);
             let bits = rng::hash_words(&[seed, n as u64, m as u64]);
             let phase = (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64) * std::f64::consts::TAU;
             Component {
@@ -82,6 +91,19 @@ pub fn select(setup: &SpectrumSetup, size: usize, count: usize, seed: u64) -> Ve
         })
         .collect()
 }
+
+/// The wavevector of cell (n, m): its centre moved by a uniform draw within ±½ cell on
+/// each axis, hashed from (seed, n, m) (see the module docs).
+pub fn in_cell(setup: &SpectrumSetup, seed: u64, n: i64, m: i64) -> (f64, f64) {
+    let (kx, ky) = setup.wavevector(n, m);
+    let (dkx, dky) = setup.dk();
+    let bits = rng::hash_words(&[seed, n as u64, m as u64, JITTER_WORD]);
+    let unit = |w: u64| (w & 0xffff_ffff) as f64 / (1u64 << 32) as f64 - 0.5;
+    (kx + unit(bits) * dkx, ky + unit(bits >> 32) * dky)
+}
+
+/// Keeps the jitter's draws apart from the phase's (a fourth hashed word).
+const JITTER_WORD: u64 = 1;
 
 #[cfg(test)]
 mod tests {
@@ -126,9 +148,19 @@ mod tests {
                 "amplitude of {:?}",
                 c.index
             );
+            // Inside its cell, not on the centre, ω at the wavevector used.
             let (kx, ky) = setup.wavevector(c.index.0, c.index.1);
-            assert_eq!(c.k, (kx, ky));
-            assert_eq!(c.omega, Dispersion::Deep.omega(kx.hypot(ky)));
+            let (dkx, dky) = setup.dk();
+            assert!(
+                (c.k.0 - kx).abs() <= 0.5 * dkx && (c.k.1 - ky).abs() <= 0.5 * dky,
+                "{:?} leaves its cell",
+                c.index
+            );
+            assert_ne!(c.k, (kx, ky));
+            assert_eq!(
+                c.omega,
+                Dispersion::Deep.omega((c.k.0 * c.k.0 + c.k.1 * c.k.1).sqrt())
+            );
             assert!((0.0..std::f64::consts::TAU).contains(&c.phase));
         }
         let sum_chosen: f64 = chosen.iter().map(|c| c.amplitude_m.powi(2) / 4.0).sum();
