@@ -29,7 +29,14 @@ pub struct Allowed<'a> {
 fn io_text(e: &std::io::Error) -> String {
     match e.raw_os_error() {
         Some(code) => std::io::Error::from_raw_os_error(code).to_string(),
-        None => e.kind().to_string(),
+        // tempfile's errors say `… at path "…/.NAME.XXXXXX.part"`.
+        None => {
+            let text = e.to_string();
+            text.split(" at path ")
+                .next()
+                .unwrap_or_default()
+                .to_string()
+        }
     }
 }
 
@@ -39,7 +46,7 @@ fn create_folder(path: &Path, dir: &Path) -> Result<()> {
     if dir.is_dir() {
         return Ok(());
     }
-    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+    if let Some(file) = dir.ancestors().find(|a| a.exists() && !a.is_dir()) {
         return Err(Error::Output {
             path: path.to_path_buf(),
             message: format!("{} is a file, not a folder", file.display()),
