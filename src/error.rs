@@ -71,6 +71,68 @@ impl Error {
     }
 }
 
+/// The candidate closest to `word` by edit distance (case-insensitive), if it is close
+/// enough to be what was meant: at most a third of the longer name's letters differ (in
+/// names of three letters, only a swap). Ties go to the first candidate.
+pub fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let word = word.to_lowercase();
+    candidates
+        .into_iter()
+        .filter(|c| !c.is_empty() && c.to_lowercase() != word)
+        .map(|c| (edit_distance(&word, &c.to_lowercase()), c))
+        .filter(|(d, c)| {
+            let longer = word.chars().count().max(c.chars().count());
+            match longer {
+                // Three letters: only the same letters swapped (`pgn`), not another name
+                // (`gif` is no misspelt `tif`).
+                0..=3 => sorted(&word) == sorted(&c.to_lowercase()),
+                _ => *d <= longer / 3,
+            }
+        })
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+fn sorted(text: &str) -> Vec<char> {
+    let mut v: Vec<char> = text.chars().collect();
+    v.sort_unstable();
+    v
+}
+
+/// `; did you mean `X`?` for the [`closest`] candidate, or nothing.
+pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
+    closest(word, candidates)
+        .map(|c| format!("; did you mean `{c}`?"))
+        .unwrap_or_default()
+}
+
+/// Levenshtein distance counted in characters, with an adjacent swap counting as one
+/// edit (`wind-dri` → `wind-dir` is one slip).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
 /// The exit codes of every command, for people and for schedulers (a Kubernetes
 /// `podFailurePolicy`, a Slurm epilog) to act on: retry an interruption, never bad input.
 pub mod exit {
@@ -89,3 +151,38 @@ pub mod exit {
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn close_names_are_suggested_and_far_ones_are_not() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(
+            edit_distance("wind-dri", "wind-dir"),
+            1,
+            "a swap is one edit"
+        );
+        assert_eq!(edit_distance("", "abc"), 3);
+        let presets = ["calm", "storm", "storm-loop", "swell", "li-tian"];
+        assert_eq!(closest("strom", presets), Some("storm"));
+        assert_eq!(
+            closest("STORM-LOOP", presets),
+            None,
+            "the same name is no suggestion"
+        );
+        assert_eq!(closest("hurricane", presets), None);
+        assert_eq!(closest("pgn", ["png", "tif", "exr"]), Some("png"));
+        assert_eq!(
+            closest("gif", ["png", "tif", "exr"]),
+            None,
+            "another format, no slip"
+        );
+        assert_eq!(
+            did_you_mean("fftt", ["hybrid", "fft"]),
+            "; did you mean `fft`?"
+        );
+        assert_eq!(did_you_mean("zzz", ["hybrid", "fft"]), "");
+    }
+}

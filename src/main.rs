@@ -1,8 +1,7 @@
-use clap::Parser;
 use seasynth::error::exit;
 
 fn main() {
-    let cli = seasynth::cli::Cli::parse();
+    let cli = seasynth::cli::Cli::parse_ordered();
     // SIGINT/SIGTERM remove every temporary file of every command before exiting.
     if let Err(e) = seasynth::export::live::install() {
         eprintln!("Error: cannot watch for interruptions: {e}");

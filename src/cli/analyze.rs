@@ -20,6 +20,7 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub json: bool,
     /// Write a log-log plot of the measured (and target) radial spectrum S(k), 800×500 PNG
+    /// (a missing folder is created) [default: none]
     #[arg(long, value_name = "PNG")]
     pub plot: Option<PathBuf>,
     /// Write the crest and wave-height exceedance against Rayleigh and Forristall (2000),

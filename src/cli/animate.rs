@@ -25,7 +25,7 @@ pub struct AnimateArgs {
     /// (default: 1 when an EXR is written, as image-sequence readers expect, else 0)
     #[arg(long, value_name = "N")]
     pub start_frame: Option<usize>,
-    /// Axis convention of disp.exr: y (default; R, G, B = x, height, −y) or z (x, y, height)
+    /// Axis convention of disp.exr: y (R, G, B = x, height, −y) or z (x, y, height) [default: y]
     #[arg(long, value_name = "y|z")]
     pub up: Option<String>,
     /// How .exr frames are written
@@ -34,13 +34,13 @@ pub struct AnimateArgs {
     /// Skip frames whose files are all there (files appear only when complete)
     #[arg(long)]
     pub resume: bool,
-    /// Frames computed at once (default: cores, limited by memory)
+    /// Frames computed at once [default: cores, limited by memory]
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
     /// Print nothing but errors
     #[arg(short, long)]
     pub quiet: bool,
-    /// Worker threads (default: all cores); results do not depend on it
+    /// Worker threads; results do not depend on it [default: all cores]
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 }

@@ -11,23 +11,26 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub field: FieldArgs,
     /// KEY=A,B,C or KEY=START:STOP:STEP (STOP excluded) over any parameter (flag name or
-    /// preset key); several sweeps give their cartesian product
+    /// preset key); several sweeps give their cartesian product; values are checked against
+    /// the key's type before anything is written [default: none]
     #[arg(long, value_name = "KEY=VALUES")]
     pub sweep: Vec<String>,
     /// A TOML manifest: base preset, a set table of overrides, sweep tables, job entries
+    /// [default: none]
     #[arg(long, value_name = "FILE.toml")]
     pub manifest: Option<PathBuf>,
     /// Output folder (created if missing); with --merge-index, where the merged index goes
+    /// [default: none, required but with --plan; with --merge-index the first DIR]
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub dir: Option<PathBuf>,
     /// File name template: {index} and {KEY} for any key (default: the index and every swept key)
     #[arg(long, value_name = "TEMPLATE")]
     pub name: Option<String>,
     /// Files per job: png, tif, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp,
-    /// preview (default png)
+    /// preview, or a map as EXR (disp.exr, normal.exr, foam.exr, jacobian.exr) [default: png]
     #[arg(long, value_delimiter = ',')]
     pub format: Vec<String>,
-    /// Jobs computed at once (default: cores, limited by memory)
+    /// Jobs computed at once [default: cores, limited by memory]
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
     /// Run only the K-th of N disjoint slices of the jobs (job i is in slice i mod N + 1);
@@ -46,7 +49,7 @@ pub struct BatchArgs {
     #[arg(long, value_name = "M", default_value_t = 0)]
     pub shard_offset: usize,
     /// Run exactly the jobs A to B (both included), every STEP-th (default STEP 1); a
-    /// render farm's chunk
+    /// render farm's chunk [default: every job]
     #[arg(long, value_name = "A-B[:STEP]", conflicts_with = "shard")]
     pub items: Option<String>,
     /// Print every job (or those of --shard/--items): its number, name, seed and swept
@@ -61,7 +64,7 @@ pub struct BatchArgs {
     #[arg(long)]
     pub resume: bool,
     /// Merge the shard (and --items) indexes found in these folders into one index.csv and
-    /// index.json
+    /// index.json [default: none]
     #[arg(long, value_name = "DIR", num_args = 1..)]
     pub merge_index: Vec<PathBuf>,
     // Random designs (`--sample N --vary KEY=DIST`).
@@ -88,7 +91,7 @@ pub struct BatchArgs {
     /// Print nothing but errors (and the scheduler task found without --shard)
     #[arg(short, long)]
     pub quiet: bool,
-    /// Worker threads (default: all cores); results do not depend on it
+    /// Worker threads; results do not depend on it [default: all cores]
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
 }

@@ -16,6 +16,7 @@ pub struct ExportArgs {
     #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub vertical_scale: Option<String>,
     /// Split .obj/.glb/.r16/.r32 outputs into C×R tiles NAME_x{i}_y{j}.EXT sharing their edges
+    /// [default: one file]
     #[arg(long, value_name = "CxR", allow_hyphen_values = true)]
     pub tiles: Option<String>,
     /// Texture coordinates of mesh tiles: global (default: 0..1 over the field) or tile (0..1 per tile)

@@ -108,8 +108,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
                 .filter(|r| r.status == Status::Failed)
                 .count();
             eprintln!(
-                "merged {} jobs ({} failed) into {}",
-                merged.rows.len(),
+                "merged {} ({} failed) into {}",
+                plural(merged.rows.len(), "job"),
                 failed,
                 out.join("index.csv").display()
             );
@@ -138,17 +138,14 @@ pub fn run(args: BatchArgs) -> Result<()> {
     // The job list: base assignments, then each job's.
     let mut sweeps = manifest.sweeps.clone();
     for s in &args.sweep {
-        let s = Sweep::parse(s)?;
+        sweeps.push(Sweep::parse(s)?);
+    }
+    for s in &sweeps {
         plan::check_key(&s.key, &s.values[0], &s.origin)?;
-        sweeps.push(s);
+        check_sweep_values(s)?;
     }
     let mut base = manifest.set.clone();
-    for s in &args.field.set {
-        base.push(Assignment::parse_set(s)?);
-    }
-    for (flag, value) in args.field.flags() {
-        base.push(Assignment::flag(flag, value));
-    }
+    base.extend(super::common::assignments(&args.field)?);
     let preset = args.field.preset.clone().or(manifest.preset.clone());
     let entries = if manifest.jobs.is_empty() {
         vec![JobSpec {
@@ -234,6 +231,24 @@ pub fn run(args: BatchArgs) -> Result<()> {
     let dir = dir?;
     // ---- end of schedulers, work items and the plan ----
 
+    // Every job's parameters are checked before anything is written, so that a bad value
+    // fails the command at once (exit code 2), not one job at a time.
+    let bad: Vec<&Job> = all.iter().filter(|j| j.params.is_err()).collect();
+    if let Some(first) = bad.first() {
+        let others = match bad.len() {
+            1 => String::new(),
+            n => format!(" (and {} more; --plan lists them)", n - 1),
+        };
+        return Err(Error::Set {
+            origin: format!("job {} {}", first.index, first.name),
+            message: format!(
+                "{}{others}; nothing was written",
+                first.params.as_ref().err().expect("a bad job")
+            ),
+        }
+        .into());
+    }
+
     let plan_hash = {
         let text: Vec<String> = all
             .iter()
@@ -310,8 +325,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
             None => {
                 if !args.quiet {
                     eprintln!(
-                        "first pass: the 16-bit mapping over the heights of {} jobs",
-                        needs.len()
+                        "first pass: the 16-bit mapping over the heights of {}",
+                        plural(needs.len(), "job")
                     );
                 }
                 // The fields of this run's jobs are kept for writing while they fit in a
@@ -438,7 +453,8 @@ pub fn run(args: BatchArgs) -> Result<()> {
             _ => String::new(),
         };
         eprintln!(
-            "batch of {total} jobs{of} in {}: {} to do, {} kept, {workers} at once{m}",
+            "batch of {}{of} in {}: {} to do, {} kept, {workers} at once{m}",
+            plural(total, "job"),
             dir.display(),
             todo.len(),
             rows.len()
@@ -569,9 +585,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
     let secs = started.elapsed().as_secs_f64();
     if !args.quiet {
         eprintln!(
-            "wrote {} of {} jobs in {secs:.2} s ({:.2} jobs/s), {} kept, {} failed; index {}",
+            "wrote {} of {} in {secs:.2} s ({:.2} jobs/s), {} kept, {} failed; index {}",
             todo.len() - failed.len(),
-            mine.len(),
+            plural(mine.len(), "job"),
             (todo.len() - failed.len()) as f64 / secs.max(1e-9),
             mine.len() - todo.len(),
             failed.len(),
@@ -580,9 +596,9 @@ pub fn run(args: BatchArgs) -> Result<()> {
     }
     if !failed.is_empty() {
         let message = format!(
-            "{} of {} jobs failed (job {}); the others were written, see {stem}.csv",
+            "{} of {} failed (job {}); the others were written, see {stem}.csv",
             failed.len(),
-            mine.len(),
+            plural(mine.len(), "job"),
             failed.join(", ")
         );
         return Err(if io_failure {
@@ -591,6 +607,46 @@ pub fn run(args: BatchArgs) -> Result<()> {
             Error::Input { path: dir, message }
         }
         .into());
+    }
+    Ok(())
+}
+
+/// `1 job`, `2 jobs`.
+fn plural(n: usize, noun: &str) -> String {
+    match n {
+        1 => format!("1 {noun}"),
+        n => format!("{n} {noun}s"),
+    }
+}
+
+/// Checks that every value of a sweep reads as a value of its key (a number for
+/// `wind-dir`, a method name for `method`, …), before any job is made: a range without
+/// its step (`0:360`) is named as such.
+fn check_sweep_values(sweep: &Sweep) -> Result<(), Error> {
+    for v in &sweep.values {
+        let a = Assignment {
+            origin: sweep.origin.clone(),
+            key: sweep.key.clone(),
+            value: v.clone(),
+        };
+        let message = match layers::apply(Default::default(), &[a]) {
+            Err(Error::Set { message, .. })
+                if ["invalid type", "invalid value", "unknown variant"]
+                    .iter()
+                    .any(|m| message.contains(m)) =>
+            {
+                message
+            }
+            _ => continue,
+        };
+        let range = match v.contains(':') {
+            true => "; a range is START:STOP:STEP (STOP excluded), e.g. 0:360:5",
+            false => "",
+        };
+        return Err(Error::Set {
+            origin: sweep.origin.clone(),
+            message: format!("`{v}` is not a value of {}: {message}{range}", sweep.key),
+        });
     }
     Ok(())
 }

@@ -29,11 +29,27 @@ fn time<T>(repeats: usize, f: impl FnMut() -> T) -> Duration {
     time_cpu(repeats, f).0
 }
 
+/// Columns on a terminal a text takes: its characters but combining marks (the tilde of
+/// `h̃` is a second character in the same column).
+fn display_width(text: &str) -> usize {
+    text.chars()
+        .filter(|c| !matches!(*c as u32, 0x0300..=0x036F | 0x20D0..=0x20FF))
+        .count()
+}
+
+/// `text` padded with spaces to `width` columns (by [`display_width`]).
+fn pad(text: &str, width: usize) -> String {
+    format!(
+        "{text}{}",
+        " ".repeat(width.saturating_sub(display_width(text)))
+    )
+}
+
 /// One row of a size's table: the stage, its time and its ratio to the bare FFT.
-fn print_row(name: &str, d: Duration, bare: Duration) {
+fn print_row(name: &str, d: Duration, bare: Duration, width: usize) {
     println!(
-        "  {:<30} {:>10.1} {:>8.2}",
-        name,
+        "  {} {:>10.1} {:>8.2}",
+        pad(name, width),
         d.as_secs_f64() * 1e3,
         d.as_secs_f64() / bare.as_secs_f64()
     );
@@ -355,9 +371,15 @@ pub fn run(args: BenchArgs) -> Result<()> {
             "\n{n}×{n}: bare 2D real inverse FFT {:.1} ms",
             bare.as_secs_f64() * 1e3
         );
-        println!("  {:<30} {:>10} {:>8}", "stage", "ms", "ratio");
+        let width = rows
+            .iter()
+            .map(|(name, _)| display_width(name))
+            .max()
+            .unwrap_or(0)
+            .max(30);
+        println!("  {} {:>10} {:>8}", pad("stage", width), "ms", "ratio");
         for (name, d) in rows {
-            print_row(name, d, bare);
+            print_row(name, d, bare, width);
         }
         for (ext, bytes) in sizes {
             println!("  {ext} file: {:.1} MB", bytes as f64 / 1e6);
@@ -541,8 +563,8 @@ fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
     });
     let sea = TrochoidSea::new(&params)?;
     let field = time(repeats, || sea.grid(&spec, 0.0));
-    print_row("trochoid setup and fit", setup, bare);
-    print_row("trochoid field (thon-2000)", field, bare);
+    print_row("trochoid setup and fit", setup, bare, 30);
+    print_row("trochoid field (thon-2000)", field, bare, 30);
     // One core: 64 rows in this thread.
     let rows = 64.min(n);
     let per_core = |p: &Params| -> Result<f64> {
@@ -714,7 +736,13 @@ fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
     println!(
         "\nexports, periodic FFT fields: medians of {repeats} runs; files removed after timing"
     );
-    println!("  {:<34} {:>9} {:>9} {:>9}", "export", "ms", "MB", "MB/s");
+    println!(
+        "  {} {:>9} {:>9} {:>9}",
+        pad("export", 34),
+        "ms",
+        "MB",
+        "MB/s"
+    );
     let cases = [
         (2048, "obj", None, "OBJ 2048², normals + UVs"),
         (2048, "glb", None, "GLB 2048², normals + UVs"),
@@ -768,12 +796,30 @@ fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
         }
         let d = median(runs);
         println!(
-            "  {:<34} {:>9.1} {:>9.1} {:>9.0}",
-            name,
+            "  {} {:>9.1} {:>9.1} {:>9.0}",
+            pad(name, 34),
             d.as_secs_f64() * 1e3,
             bytes as f64 / 1e6,
             bytes as f64 / 1e6 / d.as_secs_f64()
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_are_padded_by_display_width() {
+        assert_eq!(
+            display_width("spectrum h̃(k,0)"),
+            15,
+            "the combining tilde takes no column"
+        );
+        assert_eq!(display_width("λ=0.8"), 5);
+        assert_eq!(pad("h̃", 3), "h̃  ");
+        assert_eq!(display_width(&pad("choppy λ", 12)), 12);
+        assert_eq!(pad("longer than the width", 4), "longer than the width");
+    }
 }

@@ -341,6 +341,9 @@ const PREVIEWS: Allowed = Allowed {
 pub fn run(args: RenderArgs) -> Result<()> {
     crate::commands::common::set_threads(args.threads)?;
     let req = Request::parse(&args).map_err(Error::from)?;
+    if args.from.is_none() {
+        crate::commands::common::refuse_no_effect("render", &args.field)?;
+    }
     // The output is staged before any work: a bad path fails now, and an error later
     // leaves no partial file.
     let staged = Staged::create_checked(&args.output, &PREVIEWS, &[])?;

@@ -122,6 +122,7 @@ pub fn csv_text(points: &[Point]) -> String {
 
 /// Runs `seasynth spectrum`.
 pub fn run(args: SpectrumArgs) -> Result<()> {
+    crate::commands::common::refuse_no_effect("spectrum", &args.field)?;
     // Through `Error`, so a bad value exits with code 2.
     let freqs = args
         .freq

@@ -116,6 +116,50 @@ fn set_path(table: &mut Table, key: &str, value: Value) -> std::result::Result<(
     Ok(())
 }
 
+/// `; did you mean …?` for serde's `unknown field `X`, expected one of `a`, `b`` or
+/// `unknown variant …` in `message`, about the assignment to `key`: the closest name
+/// allowed (for a key, among the flag names too, given with the preset key it stands for).
+pub fn suggestion(message: &str, key: &str) -> String {
+    let ticked = |s: &str| -> Vec<String> {
+        s.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect()
+    };
+    let (field, rest) = if let Some(r) = message.split_once("unknown field ") {
+        (true, r.1)
+    } else if let Some(r) = message.split_once("unknown variant ") {
+        (false, r.1)
+    } else {
+        return String::new();
+    };
+    let words = ticked(rest);
+    let Some((bad, allowed)) = words.split_first() else {
+        return String::new();
+    };
+    if !field {
+        return crate::error::did_you_mean(bad, allowed.iter().map(String::as_str));
+    }
+    let canonical = canonical_key(key);
+    let parts: Vec<&str> = canonical.split('.').collect();
+    let depth = parts.iter().position(|p| p == bad).unwrap_or(0);
+    let prefix = parts[..depth].join(".");
+    let flags: Vec<&str> = match depth {
+        0 if !key.contains('.') => FLAG_KEYS.iter().map(|(f, _)| *f).collect(),
+        _ => Vec::new(),
+    };
+    let typed = if depth == 0 { key } else { bad.as_str() };
+    match crate::error::closest(typed, allowed.iter().map(String::as_str).chain(flags)) {
+        Some(c) if FLAG_KEYS.iter().any(|(f, _)| *f == c) => {
+            format!("; did you mean `{c}` ({})?", canonical_key(c))
+        }
+        Some(c) if prefix.is_empty() => format!("; did you mean `{c}`?"),
+        Some(c) => format!("; did you mean `{prefix}.{c}`?"),
+        None => String::new(),
+    }
+}
+
 /// Resolves the preset (default: `li-tian`) and the assignments into validated parameters.
 pub fn resolve(preset: Option<&str>, assignments: &[Assignment]) -> Result<Params> {
     let base = presets::load(preset.unwrap_or(presets::DEFAULT_PRESET))?;
@@ -146,9 +190,11 @@ pub fn apply(base: Params, assignments: &[Assignment]) -> Result<Params> {
         }
     }
     if let (Some(a), Some(e)) = (first_failing, last_error) {
+        let message = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+        let hint = suggestion(&message, &a.key);
         return Err(Error::Set {
             origin: a.origin.clone(),
-            message: e.message().split_whitespace().collect::<Vec<_>>().join(" "),
+            message: format!("{message}{hint}"),
         });
     }
     let params: Params = table.try_into().expect("the last state deserialized");
@@ -232,5 +278,34 @@ mod tests {
             .to_string();
         assert!(e.contains("spline") && e.contains("hybrid"), "{e}");
         assert!(Assignment::parse_set("novalue").is_err());
+    }
+
+    #[test]
+    fn unknown_names_get_the_closest_one_suggested() {
+        let e = resolve(None, &[set("wind-dri=90")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("did you mean `wind-dir` (wind.direction_deg)?"),
+            "{e}"
+        );
+        let e = resolve(None, &[set("wind.directon_deg=90")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `wind.direction_deg`?"), "{e}");
+        let e = resolve(None, &[Assignment::flag("method", "fftt")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `fft`?"), "{e}");
+        let e = resolve(None, &[Assignment::flag("spectrum", "jonswop")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `jonswap`?"), "{e}");
+        let e = resolve(None, &[Assignment::flag("spreading", "hasselman")])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("did you mean `hasselmann`?"), "{e}");
+        let e = resolve(None, &[set("zzzzzzzz=1")]).unwrap_err().to_string();
+        assert!(!e.contains("did you mean"), "nothing close: {e}");
     }
 }

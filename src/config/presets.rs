@@ -127,8 +127,9 @@ pub fn load(name_or_path: &str) -> Result<Params> {
         };
     }
     let names: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
+    let hint = crate::error::did_you_mean(name_or_path, names.iter().copied());
     Err(Error::Preset(format!(
-        "--preset {name_or_path}: no such preset or file (built-in presets: {})",
+        "--preset {name_or_path}: no such preset or file{hint} (built-in presets: {})",
         names.join(", ")
     )))
 }

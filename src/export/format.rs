@@ -182,6 +182,21 @@ pub(crate) fn inner_kind(path: &Path) -> std::result::Result<Option<OutputKind>,
     }
 }
 
+/// Every file-name ending an output may have, from the tables above: the height formats
+/// (`.png`, `.tif`, …), then each map and the preview with each of its extensions
+/// (`.normal.png`, `.normal.exr`, …). The help of `-o` lists them all (tested).
+pub fn all_suffixes() -> Vec<String> {
+    EXTENSIONS
+        .iter()
+        .map(|(e, _)| format!(".{e}"))
+        .chain(
+            INNER
+                .iter()
+                .flat_map(|i| i.outer.iter().map(move |o| format!(".{}.{o}", i.name))),
+        )
+        .collect()
+}
+
 impl Format {
     /// Meshes: OBJ and glTF.
     pub fn is_mesh(&self) -> bool {
@@ -221,10 +236,14 @@ impl Format {
             .ok_or_else(|| {
                 let allowed: Vec<String> =
                     EXTENSIONS.iter().map(|(e, _)| format!(".{e}")).collect();
+                let hint = crate::error::closest(&ext, EXTENSIONS.iter().map(|(e, _)| *e))
+                    .filter(|_| !ext.is_empty())
+                    .map(|c| format!("; did you mean `.{c}`?"))
+                    .unwrap_or_default();
                 Error::Output {
                     path: path.to_path_buf(),
                     message: format!(
-                        "unknown extension `{}` (allowed: {})",
+                        "unknown extension `{}`{hint} (allowed: {})",
                         if ext.is_empty() {
                             "(none)".to_string()
                         } else {

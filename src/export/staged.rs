@@ -24,6 +24,44 @@ pub struct Allowed<'a> {
     pub extensions: &'a [&'a str],
 }
 
+/// An I/O error's text without the path it may carry (a temporary file's name is no
+/// business of the user's): the system's message, e.g. `Permission denied (os error 13)`.
+fn io_text(e: &std::io::Error) -> String {
+    match e.raw_os_error() {
+        Some(code) => std::io::Error::from_raw_os_error(code).to_string(),
+        // tempfile's errors say `… at path "…/.NAME.XXXXXX.part"`.
+        None => {
+            let text = e.to_string();
+            text.split(" at path ")
+                .next()
+                .unwrap_or_default()
+                .to_string()
+        }
+    }
+}
+
+/// Creates the folder `dir` of the output `path` when it is missing, after checking that
+/// no part of it is an existing file.
+fn create_folder(path: &Path, dir: &Path) -> Result<()> {
+    if dir.is_dir() {
+        return Ok(());
+    }
+    if let Some(file) = dir.ancestors().find(|a| a.exists() && !a.is_dir()) {
+        return Err(Error::Output {
+            path: path.to_path_buf(),
+            message: format!("{} is a file, not a folder", file.display()),
+        });
+    }
+    std::fs::create_dir_all(dir).map_err(|e| Error::Output {
+        path: path.to_path_buf(),
+        message: format!(
+            "cannot create the folder {}: {}",
+            dir.display(),
+            io_text(&e)
+        ),
+    })
+}
+
 /// A file being written: a temporary file beside its target, registered in [`live`]
 /// from its creation until it is renamed or dropped, so SIGINT/SIGTERM remove it.
 pub struct Staged {
@@ -53,6 +91,7 @@ impl Staged {
                 message: "is a folder".into(),
             });
         }
+        create_folder(path, dir)?;
         let prefix = format!(".{name}.");
         let mut builder = tempfile::Builder::new();
         builder.prefix(&prefix).suffix(".part");
@@ -63,7 +102,7 @@ impl Staged {
         let mut live = live::lock();
         let tmp = builder.tempfile_in(dir).map_err(|e| Error::Output {
             path: path.to_path_buf(),
-            message: format!("cannot write in {}: {e}", dir.display()),
+            message: format!("cannot write in {}: {}", dir.display(), io_text(&e)),
         })?;
         let id = live::register(&mut live, tmp.path());
         Ok(Self {

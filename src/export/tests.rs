@@ -101,12 +101,26 @@ fn a_staged_file_is_listed_for_cleanup_until_written_or_dropped() {
 }
 
 #[test]
-fn an_unwritable_folder_fails_at_once() {
-    let e = Staged::create(Path::new("/nonexistent-dir/x.png"))
-        .err()
+fn a_missing_folder_is_created_and_a_file_in_the_way_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("a/b/x.png");
+    Staged::create(&target)
         .unwrap()
-        .to_string();
-    assert!(e.contains("/nonexistent-dir"), "{e}");
+        .write_with(|w| w.write_all(b"x"))
+        .unwrap();
+    assert_eq!(std::fs::read(&target).unwrap(), b"x");
+    // A file where a folder should be: the error names the user's path and that file,
+    // never a temporary name.
+    let file = dir.path().join("f");
+    std::fs::write(&file, b"").unwrap();
+    let target = file.join("sub/x.png");
+    let e = Staged::create(&target).err().unwrap().to_string();
+    assert!(
+        e.starts_with(&format!("output {}: ", target.display()))
+            && e.contains(&format!("{} is a file, not a folder", file.display())),
+        "{e}"
+    );
+    assert!(!e.contains(".part"), "{e}");
 }
 
 #[test]

@@ -49,10 +49,14 @@ impl FileKind {
             other => match OutputKind::of_path(std::path::Path::new(&format!("x.{other}"))) {
                 Ok(OutputKind::Map(kind, enc)) => FileKind::Map(kind, enc),
                 _ => {
+                    let names = FILE_KINDS.split([',', ':', ' ']).filter(|n| {
+                        n.contains(['a', 'e', 'i', 'o', 'u'])
+                            && !["or", "map", "as", "EXR"].contains(n)
+                    });
                     return Err(ParamError {
                         name: "--format".into(),
                         allowed: FILE_KINDS.into(),
-                        got: other.into(),
+                        got: format!("{other}{}", crate::error::did_you_mean(other, names)),
                     });
                 }
             },
@@ -248,11 +252,32 @@ pub(crate) fn progress_bar(len: u64, template: &str, show: bool) -> indicatif::P
         return indicatif::ProgressBar::hidden();
     }
     let b = indicatif::ProgressBar::new(len);
+    // `{per_sec}` is indicatif's rate with four decimals (`74.8102/s`): three significant
+    // digits instead.
+    let template = template.replace("{per_sec}", "{rate}");
     b.set_style(
-        indicatif::ProgressStyle::with_template(template)
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        indicatif::ProgressStyle::with_template(&template)
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .with_key(
+                "rate",
+                |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{}", rate_text(s.per_sec()));
+                },
+            ),
     );
     b
+}
+
+/// A rate per second to three significant digits (`74.8/s`, `1234/s`, `0.512/s`).
+pub(crate) fn rate_text(per_sec: f64) -> String {
+    let r = per_sec.max(0.0);
+    match r {
+        r if !r.is_finite() => "-/s".to_string(),
+        r if r >= 100.0 => format!("{r:.0}/s"),
+        r if r >= 10.0 => format!("{r:.1}/s"),
+        r if r >= 1.0 => format!("{r:.2}/s"),
+        r => format!("{r:.3}/s"),
+    }
 }
 
 impl Progress {
@@ -431,6 +456,15 @@ mod tests {
                 "two fit twice into {m} bytes"
             );
         }
+    }
+
+    #[test]
+    fn rates_are_shown_to_three_significant_digits() {
+        assert_eq!(rate_text(74.8102), "74.8/s");
+        assert_eq!(rate_text(1234.56), "1235/s");
+        assert_eq!(rate_text(3.14159), "3.14/s");
+        assert_eq!(rate_text(0.51234), "0.512/s");
+        assert_eq!(rate_text(f64::INFINITY), "-/s");
     }
 
     #[test]

@@ -37,10 +37,15 @@ pub fn suffixes(formats: &[String]) -> Result<Vec<String>, Error> {
             Ok(k) => k.suffix(),
             Err(_) => {
                 Format::from_path(Path::new(&format!("x.{f}"))).map_err(|_| {
+                    let names = [
+                        "png", "tif", "tiff", "exr", "r16", "r32", "raw", "obj", "glb", "normal",
+                        "foam", "jacobian", "disp", "preview", "disp.exr", "normal.exr",
+                        "foam.exr", "jacobian.exr",
+                    ];
                     Error::Param(ParamError {
                         name: "--format".into(),
                         allowed: "png, tif, tiff, exr, r16, r32, raw, obj, glb, normal, foam, jacobian, disp, preview, or a map as EXR (disp.exr, normal.exr, foam.exr, jacobian.exr)".into(),
-                        got: f.clone(),
+                        got: format!("{f}{}", crate::error::did_you_mean(&f, names)),
                     })
                 })?;
                 height = true;
