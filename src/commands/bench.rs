@@ -632,6 +632,7 @@ fn resampling_and_png_rows(
         "choppy height frame",
         time(repeats, || heights.frame(1.0)),
         bare,
+        30,
     );
     print_row(
         "  of which: resampling",
@@ -639,6 +640,7 @@ fn resampling_and_png_rows(
             field::dynamics::resample_choppy(still, d, &spec)
         }),
         bare,
+        30,
     );
     let st = frame.grid.stats();
     let mapping = HeightMapping {
@@ -672,10 +674,10 @@ fn resampling_and_png_rows(
     let foam = file("foam", &mut |s| {
         s.write_with(|w| write_gray16(w, &spec, &foam))
     })?;
-    print_row("PNG 16-bit height (choppy)", height, bare);
-    print_row("PNG 8-bit RGB normal map", normal, bare);
-    print_row("PNG 16-bit foam map", foam, bare);
-    print_row("  the three map PNGs", height + normal + foam, bare);
+    print_row("PNG 16-bit height (choppy)", height, bare, 30);
+    print_row("PNG 8-bit RGB normal map", normal, bare, 30);
+    print_row("PNG 16-bit foam map", foam, bare, 30);
+    print_row("  the three map PNGs", height + normal + foam, bare, 30);
     let sizes: Vec<String> = sizes
         .iter()
         .map(|(k, b)| format!("{k} {:.2} MB", *b as f64 / 1e6))
