@@ -243,7 +243,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
             origin: format!("job {} {}", first.index, first.name),
             message: format!(
                 "{}{others}; nothing was written",
-                first.params.as_ref().err().expect("a bad job")
+                first.params.as_ref().expect_err("a bad job")
             ),
         }
         .into());
