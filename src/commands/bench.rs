@@ -45,6 +45,10 @@ fn pad(text: &str, width: usize) -> String {
     )
 }
 
+/// The width of the stage names, the same in every table of a size so that its columns
+/// line up.
+const NAME_WIDTH: usize = 38;
+
 /// One row of a size's table: the stage, its time and its ratio to the bare FFT.
 fn print_row(name: &str, d: Duration, bare: Duration, width: usize) {
     println!(
@@ -376,7 +380,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
             .map(|(name, _)| display_width(name))
             .max()
             .unwrap_or(0)
-            .max(30);
+            .max(NAME_WIDTH);
         println!("  {} {:>10} {:>8}", pad("stage", width), "ms", "ratio");
         for (name, d) in rows {
             print_row(name, d, bare, width);
@@ -563,8 +567,8 @@ fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
     });
     let sea = TrochoidSea::new(&params)?;
     let field = time(repeats, || sea.grid(&spec, 0.0));
-    print_row("trochoid setup and fit", setup, bare, 30);
-    print_row("trochoid field (thon-2000)", field, bare, 30);
+    print_row("trochoid setup and fit", setup, bare, NAME_WIDTH);
+    print_row("trochoid field (thon-2000)", field, bare, NAME_WIDTH);
     // One core: 64 rows in this thread.
     let rows = 64.min(n);
     let per_core = |p: &Params| -> Result<f64> {
@@ -632,7 +636,7 @@ fn resampling_and_png_rows(
         "choppy height frame",
         time(repeats, || heights.frame(1.0)),
         bare,
-        30,
+        NAME_WIDTH,
     );
     print_row(
         "  of which: resampling",
@@ -640,7 +644,7 @@ fn resampling_and_png_rows(
             field::dynamics::resample_choppy(still, d, &spec)
         }),
         bare,
-        30,
+        NAME_WIDTH,
     );
     let st = frame.grid.stats();
     let mapping = HeightMapping {
@@ -649,7 +653,7 @@ fn resampling_and_png_rows(
     };
     let normals = frame.surface.normals().context("slopes were asked for")?;
     let rgb = normal_rgb(&normals);
-    let (coverage, _) = crate::export::maps::foam_coverage_of(&choppy, &frame)
+    let (coverage, _) = crate::export::maps::foam_coverage_of(choppy, &frame)
         .context("the Jacobian was asked for")?;
     let foam: Vec<u16> = coverage
         .iter()
@@ -674,10 +678,15 @@ fn resampling_and_png_rows(
     let foam = file("foam", &mut |s| {
         s.write_with(|w| write_gray16(w, &spec, &foam))
     })?;
-    print_row("PNG 16-bit height (choppy)", height, bare, 30);
-    print_row("PNG 8-bit RGB normal map", normal, bare, 30);
-    print_row("PNG 16-bit foam map", foam, bare, 30);
-    print_row("  the three map PNGs", height + normal + foam, bare, 30);
+    print_row("PNG 16-bit height (choppy)", height, bare, NAME_WIDTH);
+    print_row("PNG 8-bit RGB normal map", normal, bare, NAME_WIDTH);
+    print_row("PNG 16-bit foam map", foam, bare, NAME_WIDTH);
+    print_row(
+        "  the three map PNGs",
+        height + normal + foam,
+        bare,
+        NAME_WIDTH,
+    );
     let sizes: Vec<String> = sizes
         .iter()
         .map(|(k, b)| format!("{k} {:.2} MB", *b as f64 / 1e6))
