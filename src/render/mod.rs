@@ -202,7 +202,7 @@ const PEAK_SIDE: usize = 512;
 
 /// The wavelength of the peak of `field`'s measured omnidirectional spectrum S(k)
 /// ([`crate::measure::spectrum`]), meters: the field block-averaged to at most
-/// [`PEAK_SIDE`]² samples (a low-pass that keeps the peak of any field whose peak
+/// 512² samples (a low-pass that keeps the peak of any field whose peak
 /// wavelength spans several blocks), with a Hann window when it is not periodic (its
 /// edges would otherwise add power at the lowest wavenumbers). Kept between 8 sample
 /// spacings and the field's size; the field's size for a flat field.
