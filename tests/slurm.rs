@@ -14,14 +14,14 @@ use std::time::{Duration, Instant};
 
 use serde_json::Value;
 
-/// The batch of every task: 9 FFT seas of 768², 3 per task, slow enough (about a second
-/// a task) to be caught running.
+/// The batch of every task: 9 FFT seas of 1536², 3 per task, slow enough (a few seconds
+/// a task) to be caught running when the test requeues or cancels it.
 const MANIFEST: &str = r#"format = ["png", "tif"]
 
 [set]
 method = "fft"
-size = 768
-extent = 1024
+size = 1536
+extent = 2048
 
 [sweep]
 seed = "1:10:1"
