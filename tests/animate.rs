@@ -306,3 +306,89 @@ fn exr_sequences_start_at_frame_one_and_each_file_is_generate_at_its_time() {
         &["--format", "disp.png"],
     );
 }
+
+/// Every file of a sequence, by name, as bytes.
+fn files_of(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    let mut v: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            (
+                p.file_name().unwrap().to_string_lossy().into_owned(),
+                read(&p),
+            )
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn frames_overlapped_with_their_writing_are_the_same_bytes_at_any_jobs_and_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    let runs: [&[&str]; 3] = [
+        &["--jobs", "1", "--threads", "1"],
+        &["--jobs", "3", "--threads", "2"],
+        &["--jobs", "2", "--threads", "3"],
+    ];
+    let mut seen = Vec::new();
+    for (i, extra) in runs.iter().enumerate() {
+        let out = format!("j{i}");
+        let mut a = args(&[
+            "--frames",
+            "7",
+            "--choppiness",
+            "0.8",
+            "--format",
+            "png,tif,normal,foam,disp,disp.exr",
+            "--exr-compression",
+            "zip",
+            "-o",
+            &out,
+            "-q",
+        ]);
+        a.extend(*extra);
+        run_ok(dir.path(), &a);
+        let files = files_of(&dir.path().join(&out));
+        assert_eq!(
+            files.len(),
+            7 * 6 + 1,
+            "every frame's files and the sidecar"
+        );
+        seen.push(files);
+    }
+    assert!(
+        seen[1] == seen[0],
+        "--jobs 3 --threads 2 differs from one job and thread"
+    );
+    assert!(
+        seen[2] == seen[0],
+        "--jobs 2 --threads 3 differs from one job and thread"
+    );
+    // The ZIP displacement EXR holds the samples of the uncompressed one.
+    let mut a = args(&[
+        "--frames",
+        "7",
+        "--choppiness",
+        "0.8",
+        "--format",
+        "disp.exr",
+    ]);
+    a.extend(["-o", "plain", "-q"]);
+    run_ok(dir.path(), &a);
+    for f in [1, 7] {
+        let name = format!("frame_{f:05}.disp.exr");
+        let zip = seasynth::export::exr::read_channels(&dir.path().join("j0").join(&name));
+        let plain = seasynth::export::exr::read_channels(&dir.path().join("plain").join(&name));
+        let (zip, plain) = (zip.unwrap(), plain.unwrap());
+        assert_eq!(zip.2.len(), 4, "R, G, B and foam in A");
+        for ((nz, z), (np, p)) in zip.2.iter().zip(&plain.2) {
+            assert_eq!(nz, np);
+            let same = z.iter().zip(p).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(
+                same,
+                "{name}, channel {nz}: ZIP and uncompressed samples differ"
+            );
+        }
+    }
+}
