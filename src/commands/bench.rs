@@ -653,11 +653,18 @@ fn resampling_and_png_rows(
     };
     let normals = frame.surface.normals().context("slopes were asked for")?;
     let rgb = normal_rgb(&normals);
-    let (coverage, _) = crate::export::maps::foam_coverage_of(choppy, &frame)
-        .context("the Jacobian was asked for")?;
-    let foam: Vec<u16> = coverage
+    let j = frame
+        .surface
+        .jacobian
+        .as_ref()
+        .context("the Jacobian was asked for")?
+        .values(spec.len());
+    let t = crate::export::maps::FoamRule::of(choppy)
+        .resolve(&j)
+        .threshold;
+    let foam: Vec<u16> = j
         .iter()
-        .map(|&c| (c as f64 * 65535.0).round() as u16)
+        .map(|&j| crate::export::maps::foam_value(j, t))
         .collect();
     let mut sizes = Vec::new();
     let mut file = |name: &str, write: &mut dyn FnMut(Staged) -> crate::error::Result<()>| {

@@ -52,14 +52,6 @@ pub fn material_of(params: &Params) -> Material {
     }
 }
 
-/// The foam threshold T of `params`' foam coverage over the J samples `j`
-/// (`motion.foam_threshold`, `auto` resolved over `j`: [`crate::measure::foam`]).
-pub fn foam_threshold(params: &Params, j: &[f32]) -> f64 {
-    crate::measure::foam::FoamRule::of(params)
-        .resolve(j)
-        .threshold
-}
-
 /// Whether a preview of `params` draws whitecaps: a choppy field (λ ≠ 0), whose
 /// synthesis then needs its Jacobian and displacement ([`preview_extras`]).
 pub fn draws_foam(params: &Params) -> bool {
@@ -78,19 +70,15 @@ pub fn preview_extras(params: &Params) -> dynamics::Extras {
 }
 
 /// The foam coverage clamp((T − J)/T, 0, 1) of a synthesis on its height grid (J moved
-/// with the choppy resampling, like the heights), T from [`foam_threshold`]; `None` when
-/// the state has no Jacobian or no foam anywhere.
+/// with the choppy resampling, like the heights), T resolved as the maps resolve it
+/// ([`crate::export::maps::foam_coverage_of`]); `None` when the state has no Jacobian or
+/// no foam anywhere.
 pub fn foam_coverage(synthesis: &Synthesis, params: &Params) -> Option<Vec<f32>> {
     if !draws_foam(params) {
         return None;
     }
     let spec = synthesis.grid.spec;
-    let j = synthesis.surface.jacobian.as_ref()?.values(spec.len());
-    let t = foam_threshold(params, &j);
-    let cover: Vec<f32> = j
-        .iter()
-        .map(|&j| crate::measure::foam::coverage(j, t))
-        .collect();
+    let (cover, _) = crate::export::maps::foam_coverage_of(params, synthesis)?;
     if !cover.iter().any(|&c| c > 0.0) {
         return None;
     }
