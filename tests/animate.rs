@@ -74,6 +74,35 @@ fn frame_k_equals_generate_at_k_over_fps_bit_for_bit_and_choppy_maps_are_written
     assert!(j.iter().any(|&v| v < 0.99) && j.iter().any(|&v| v > 1.01));
 }
 
+/// A sequence of maps alone skips the choppy resampling (no file holds the resampled
+/// heights), and its maps are the same bytes as those written beside the heights.
+#[test]
+fn maps_without_heights_are_the_maps_written_with_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let choppy = ["--frames", "3", "--choppiness", "0.9"];
+    for (out, format) in [
+        ("with", "tif,normal,foam,jacobian,disp"),
+        ("alone", "normal,foam,jacobian,disp"),
+    ] {
+        let mut a = args(&choppy);
+        a.extend(["--format", format, "-o", out, "-q"]);
+        run_ok(dir.path(), &a);
+    }
+    let maps = |out: &str| -> Vec<(String, Vec<u8>)> {
+        files_of(&dir.path().join(out))
+            .into_iter()
+            .filter(|(name, _)| name != "sequence.json" && !name.ends_with("0.tif"))
+            .filter(|(name, _)| !name.ends_with("1.tif") && !name.ends_with("2.tif"))
+            .collect()
+    };
+    let (with, alone) = (maps("with"), maps("alone"));
+    assert_eq!(alone.len(), 3 * 4, "four maps a frame");
+    assert!(
+        with == alone,
+        "maps written alone differ from maps beside heights"
+    );
+}
+
 #[test]
 fn a_loop_repeats_after_its_period_and_one_mapping_serves_every_frame() {
     let dir = tempfile::tempdir().unwrap();

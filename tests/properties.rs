@@ -122,7 +122,7 @@ proptest! {
         v in assignments()
     ) {
         let params = resolve(&v)?;
-        let extras = Extras { slopes: true, displacement: true, jacobian: true };
+        let extras = Extras::ALL;
         let syn = Synthesizer::new(&params, extras, false)
             .map_err(|e| TestCaseError::fail(format!("{v:?}: {e}")))?
             .frame(params.time_s);

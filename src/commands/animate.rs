@@ -128,6 +128,11 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     }
     let mut extras = maps::extras_for(&map_kinds);
     extras.slopes |= kinds.contains(&Kind::Preview);
+    // Heights are written (or previewed) only by these; a sequence of maps alone skips
+    // the choppy resampling.
+    extras.maps_only = !kinds
+        .iter()
+        .any(|k| matches!(k, Kind::Png | Kind::Tif | Kind::Exr | Kind::Preview));
     // Frames run `jobs` at a time, as many as the memory estimate allows, each with the
     // frame before it being written (two frames a job); the draws are kept for the whole
     // sequence (16 bytes a sample, measured).

@@ -167,11 +167,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 ..e
             })
         })?;
-        let all = crate::field::dynamics::Extras {
-            slopes: true,
-            displacement: true,
-            jacobian: true,
-        };
+        let all = crate::field::dynamics::Extras::ALL;
         let choppy = Params {
             motion: crate::config::MotionParams {
                 choppiness: 1.0,
@@ -260,11 +256,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
         let heights = field::Synthesizer::new(&fft_params, Default::default(), true)?;
         let still = time_cpu(repeats, || heights.frame(1.0));
         rows.push(("animation frame: height", still.0));
-        let all = field::dynamics::Extras {
-            slopes: true,
-            displacement: true,
-            jacobian: true,
-        };
+        let all = field::dynamics::Extras::ALL;
         let still_full = field::Synthesizer::new(&fft_params, all, true)?;
         let still_maps = time_cpu(repeats, || {
             let f = still_full.frame(1.0);
@@ -608,11 +600,7 @@ fn resampling_and_png_rows(
 ) -> Result<()> {
     use crate::export::maps::{normal_rgb, write_gray16};
     use crate::export::{Staged, rgb8};
-    let all = field::dynamics::Extras {
-        slopes: true,
-        displacement: true,
-        jacobian: true,
-    };
+    let all = field::dynamics::Extras::ALL;
     let heights = field::Synthesizer::new(choppy, Default::default(), true)?;
     let full = field::Synthesizer::new(choppy, all, true)?;
     let frame = full.frame(1.0);

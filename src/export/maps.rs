@@ -16,6 +16,7 @@
 
 use std::io::{Seek, Write};
 
+use rayon::prelude::*;
 use tiff::encoder::{TiffEncoder, colortype};
 
 pub use super::format::{MapEncoding, MapKind};
@@ -281,12 +282,25 @@ pub fn write_xyz_f32<W: Write + Seek>(
     y: &[f32],
     z: &[f32],
 ) -> std::io::Result<()> {
-    let data: Vec<f32> = x
-        .iter()
-        .zip(y)
-        .zip(z)
-        .flat_map(|((&a, &b), &c)| [a, b, c])
-        .collect();
+    // Interleaved in parallel, a row per task, into memory not zeroed first.
+    let (nx, len) = (spec.nx, 3 * spec.len());
+    assert!(
+        [x.len(), y.len(), z.len()].iter().all(|&n| n == spec.len()),
+        "one sample per grid point"
+    );
+    let mut data: Vec<f32> = Vec::with_capacity(len);
+    data.spare_capacity_mut()[..len]
+        .par_chunks_mut(3 * nx)
+        .zip(x.par_chunks(nx).zip(y.par_chunks(nx)).zip(z.par_chunks(nx)))
+        .for_each(|(out, ((x, y), z))| {
+            for (o, ((&a, &b), &c)) in out.chunks_exact_mut(3).zip(x.iter().zip(y).zip(z)) {
+                o[0].write(a);
+                o[1].write(b);
+                o[2].write(c);
+            }
+        });
+    // SAFETY: the rows of x, y and z (each nx long) fill every element of `len`.
+    unsafe { data.set_len(len) };
     let mut enc = TiffEncoder::new(w).map_err(std::io::Error::other)?;
     enc.write_image::<colortype::RGB32Float>(spec.nx as u32, spec.ny as u32, &data)
         .map_err(std::io::Error::other)

@@ -85,11 +85,7 @@ impl FileKind {
 /// derived maps, bytes ([`crate::pipeline::memory::Footprint`], with every derived field when there
 /// is a map).
 pub fn field_bytes(params: &Params, maps: usize) -> u64 {
-    let all = crate::field::dynamics::Extras {
-        slopes: true,
-        displacement: true,
-        jacobian: true,
-    };
+    let all = crate::field::dynamics::Extras::ALL;
     let extras = if maps > 0 { all } else { Default::default() };
     crate::pipeline::memory::Footprint::of_field(params, extras)
         .with_outputs(maps as u64)

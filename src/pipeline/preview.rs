@@ -66,6 +66,7 @@ pub fn preview_extras(params: &Params) -> dynamics::Extras {
         slopes: false,
         displacement: foam,
         jacobian: foam,
+        maps_only: false,
     }
 }
 

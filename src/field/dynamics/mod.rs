@@ -209,9 +209,21 @@ pub struct Extras {
     pub slopes: bool,
     pub displacement: bool,
     pub jacobian: bool,
+    /// No output reads the heights of a choppy frame, only its maps: the frame keeps the
+    /// undisplaced heights (what displacement maps hold) and skips the resampling.
+    pub maps_only: bool,
 }
 
 impl Extras {
+    /// Every derived field, and the heights resampled.
+    pub const ALL: Self = Self {
+        slopes: true,
+        displacement: true,
+        jacobian: true,
+        maps_only: false,
+    };
+
+    /// Whether any derived field is asked for (`maps_only` asks for none).
     pub fn any(&self) -> bool {
         self.slopes || self.displacement || self.jacobian
     }
@@ -306,13 +318,11 @@ pub fn surface_and_height(
         (plan.process(half), None)
     };
     let l = lambda as f32;
-    let mut fields = spectra.into_iter().zip(&wanted).map(|(s, d)| {
-        let mut v = plan.process(s);
-        if !matches!(d, SlopeX | SlopeY) {
-            v.par_iter_mut().for_each(|x| *x *= l);
-        }
-        v
-    });
+    // λ times each displacement field (scaled row by row inside the transform).
+    let mut fields = spectra
+        .into_iter()
+        .zip(&wanted)
+        .map(|(s, d)| plan.process_scaled(s, (!matches!(d, SlopeX | SlopeY)).then_some(l)));
     let mut next = || fields.next().expect("one field per wanted factor");
     let slopes = slope_x.map(|sx| [sx, next()]);
     let displacement = choppy.then(|| [next(), next()]);

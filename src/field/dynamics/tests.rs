@@ -121,11 +121,7 @@ fn choppy_displacement_of_one_component_is_the_trochoid() {
 fn jacobian_is_one_without_choppiness_and_matches_the_trochoid_with_it() {
     let (a, _, k, spec, half) = cosine(3, 256, 100.0);
     let plan = InverseFft2::new(spec.nx, spec.ny);
-    let all = Extras {
-        slopes: true,
-        displacement: true,
-        jacobian: true,
-    };
+    let all = Extras::ALL;
     let s0 = surface(&half, &spec, &plan, all, 0.0);
     let j0 = s0.jacobian.unwrap();
     assert_eq!(j0, Jacobian::One, "no field stored for J = 1");

@@ -2,6 +2,7 @@
 //! N/2 + 1 kx lines (contiguous), then complex-to-real inverse FFTs along x of rows
 //! gathered a block at a time (no transposed copy of the whole spectrum).
 
+use std::mem::MaybeUninit;
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -37,11 +38,15 @@ impl InverseFft2 {
 
     /// h(x) = Σ_k h̃(k)·e^{ik·x} on the grid. The spectrum is consumed (its buffer is
     /// transformed in place; the rows go through small per-task buffers).
-    pub fn process(&self, mut half: HalfSpectrum) -> Vec<f32> {
+    pub fn process(&self, half: HalfSpectrum) -> Vec<f32> {
+        self.process_scaled(half, None)
+    }
+
+    /// [`process`](Self::process), every sample then multiplied by `scale` (the same
+    /// product as scaling the returned field, done while each row is in the cache).
+    pub fn process_scaled(&self, mut half: HalfSpectrum, scale: Option<f32>) -> Vec<f32> {
         self.columns(&mut half);
-        let mut out = vec![0.0f32; self.nx * self.ny];
-        self.rows(&half, None, &mut out);
-        out
+        self.rows_into_new(&half, None, scale)
     }
 
     /// [`process`](Self::process), and with it the field of the spectrum times a
@@ -54,11 +59,26 @@ impl InverseFft2 {
     ) -> (Vec<f32>, Vec<f32>) {
         assert_eq!(line_factor.len(), self.nx / 2 + 1, "one factor per kx line");
         self.columns(&mut half);
-        let mut out = vec![0.0f32; self.nx * self.ny];
-        self.rows(&half, None, &mut out);
-        let mut scaled = vec![0.0f32; self.nx * self.ny];
-        self.rows(&half, Some(line_factor), &mut scaled);
+        let out = self.rows_into_new(&half, None, None);
+        let scaled = self.rows_into_new(&half, Some(line_factor), None);
         (out, scaled)
+    }
+
+    /// The rows pass into a new field. Its memory is not zeroed up front (a serial
+    /// `memset` of the whole field where freed memory is reused): each task zeroes its
+    /// own block of rows just before transforming into it, while the block is cached.
+    fn rows_into_new(
+        &self,
+        half: &HalfSpectrum,
+        factor: Option<&[Complex32]>,
+        scale: Option<f32>,
+    ) -> Vec<f32> {
+        let len = self.nx * self.ny;
+        let mut out = Vec::with_capacity(len);
+        self.rows(half, factor, scale, &mut out.spare_capacity_mut()[..len]);
+        // SAFETY: `rows` initialized every element of the `len` it was given.
+        unsafe { out.set_len(len) };
+        out
     }
 
     /// 1. inverse FFT along y of every kx line, in place.
@@ -79,7 +99,15 @@ impl InverseFft2 {
     /// (no full transposed copy) and transforms them into the output. The DC bin (and
     /// the Nyquist bin for even N) of every row is real up to round-off because the
     /// spectrum is Hermitian (and every factor keeps it so).
-    fn rows(&self, half: &HalfSpectrum, factor: Option<&[Complex32]>, out: &mut [f32]) {
+    /// Every element of `out` is initialized (zeroed, then written by the transform, then
+    /// multiplied by `scale` when given).
+    fn rows(
+        &self,
+        half: &HalfSpectrum,
+        factor: Option<&[Complex32]>,
+        scale: Option<f32>,
+        out: &mut [MaybeUninit<f32>],
+    ) {
         let (nx, ny) = (self.nx, self.ny);
         let nh = nx / 2 + 1;
         let scratch_len = self.rows.get_scratch_len();
@@ -94,6 +122,7 @@ impl InverseFft2 {
                     )
                 },
                 |(block, scratch), (b, outs)| {
+                    let outs = zeroed(outs);
                     let j0 = b * TRANSPOSE_BLOCK;
                     let nrows = outs.len() / nx;
                     for n in 0..nh {
@@ -120,8 +149,20 @@ impl InverseFft2 {
                         self.rows
                             .process_with_scratch(input, output, scratch)
                             .expect("buffer lengths come from the plan");
+                        if let Some(s) = scale {
+                            output.iter_mut().for_each(|x| *x *= s);
+                        }
                     }
                 },
             );
     }
+}
+
+/// `out` with every element set to zero, as initialized floats.
+fn zeroed(out: &mut [MaybeUninit<f32>]) -> &mut [f32] {
+    for x in out.iter_mut() {
+        x.write(0.0);
+    }
+    // SAFETY: every element was just written; MaybeUninit<f32> has f32's layout.
+    unsafe { std::slice::from_raw_parts_mut(out.as_mut_ptr().cast::<f32>(), out.len()) }
 }

@@ -64,7 +64,12 @@ impl HeightMethod for Hybrid {
             .alpha
             .as_ref()
             .expect("prepared before the first frame");
-        let (mut grid, surface, h0max_m, _) = self.sea.field(time_s, extras);
+        // The blend's weight and the slopes come from the choppy heights: always resampled.
+        let sea_extras = Extras {
+            maps_only: false,
+            ..extras
+        };
+        let (mut grid, surface, h0max_m, _) = self.sea.field(time_s, sea_extras);
         let mut info = self.sea.info().clone();
         info.perlin_wavelengths_m = self.noise.info().perlin_wavelengths_m.clone();
         info.h0max_m = Some(h0max_m);

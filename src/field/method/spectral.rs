@@ -63,8 +63,8 @@ impl Spectral {
         }
     }
 
-    /// The heights of `half` (resampled when choppy) and the derived fields `extras` asks
-    /// for, at the samples `--sample-at` places.
+    /// The heights of `half` (resampled when choppy, unless `extras.maps_only`) and the
+    /// derived fields `extras` asks for, at the samples `--sample-at` places.
     pub fn heights(&self, mut half: HalfSpectrum, extras: Extras) -> (Grid, Surface) {
         let spec = self.spec;
         if self.sample_offset != 0.0 {
@@ -80,7 +80,13 @@ impl Spectral {
         } else {
             self.plan.process(half)
         };
-        if let Some(d) = surface.displacement.as_ref().filter(|_| lambda != 0.0) {
+        // Without `maps_only` the heights are those of the displaced surface; with it they
+        // stay undisplaced, which is what every map reads.
+        if let Some(d) = surface
+            .displacement
+            .as_ref()
+            .filter(|_| lambda != 0.0 && !extras.maps_only)
+        {
             let choppy = dynamics::resample_choppy(&data, d, &spec);
             let still = std::mem::replace(&mut data, choppy);
             if extras.displacement {
@@ -157,5 +163,50 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `maps_only` leaves a choppy frame's heights undisplaced (the resampling skipped)
+    /// and every derived field as it is without it.
+    #[test]
+    fn maps_only_keeps_the_undisplaced_heights_and_the_same_maps() {
+        let mut p = Params {
+            method: Method::Fft,
+            ..Params::default()
+        };
+        p.grid.size = crate::config::Size2([32, 24]);
+        p.grid.extent_m = crate::config::Extent2([120.0, 90.0]);
+        p.wind.speed_mps = 14.0;
+        p.motion.choppiness = 0.9;
+        p.validate().unwrap();
+        let s = Spectral::new(&p).unwrap();
+        let half = || fft::synthesize_spectrum(&s.setup(0.4));
+        let extras = Extras {
+            displacement: true,
+            jacobian: true,
+            slopes: true,
+            maps_only: false,
+        };
+        let (choppy, full) = s.heights(half(), extras);
+        let (still, maps) = s.heights(
+            half(),
+            Extras {
+                maps_only: true,
+                ..extras
+            },
+        );
+        let undisplaced = full.undisplaced_height.expect("kept beside a displacement");
+        assert_eq!(still.data, undisplaced, "the heights stay undisplaced");
+        assert_ne!(
+            choppy.data, still.data,
+            "the full frame's heights are resampled"
+        );
+        assert!(
+            maps.undisplaced_height.is_none(),
+            "the heights are the undisplaced ones"
+        );
+        assert_eq!(maps.displacement, full.displacement);
+        assert_eq!(maps.jacobian, full.jacobian);
+        assert_eq!(maps.slopes, full.slopes);
+        assert_eq!(maps.displacement_gradient, full.displacement_gradient);
     }
 }
