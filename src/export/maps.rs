@@ -54,7 +54,7 @@ impl MapContext<'_> {
             Some(p) => p.to_vec(),
             None => {
                 let t = self.threshold(j);
-                j.iter().map(|&j| foam_value(j, t)).collect()
+                j.par_iter().map(|&j| foam_value(j, t)).collect()
             }
         }
     }
@@ -65,7 +65,7 @@ impl MapContext<'_> {
             Some(p) => p.iter().map(|&v| v as f32 / 65535.0).collect(),
             None => {
                 let t = self.threshold(j);
-                j.iter().map(|&j| foam_coverage(j, t)).collect()
+                j.par_iter().map(|&j| foam_coverage(j, t)).collect()
             }
         }
     }

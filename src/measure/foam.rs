@@ -115,19 +115,38 @@ pub fn threshold_for_fraction(j: &[f32], fraction: f64) -> f64 {
 
 /// Foam coverage 0..1 of a sample of Jacobian `j` under the threshold T:
 /// clamp((T − J)/T, 0, 1).
+#[inline]
 pub fn coverage(j: f32, threshold: f64) -> f32 {
     ((threshold - j as f64) / threshold).clamp(0.0, 1.0) as f32
 }
 
 /// Foam coverage in 0..=65535: round(65535·clamp((T − J)/T, 0, 1)).
+#[inline]
 pub fn coverage_u16(j: f32, threshold: f64) -> u16 {
     let f = ((threshold - j as f64) / threshold).clamp(0.0, 1.0);
-    (f * 65535.0).round() as u16
+    // round() without the library call: 65535·f < 2^16 leaves 36 bits below the point, so
+    // adding ½ is exact and truncating the non-negative sum is ⌊x + ½⌋ = round(x).
+    (f * 65535.0 + 0.5) as u16
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn coverage_u16_rounds_like_round() {
+        for t in [0.3, 0.7, 0.9123, 1.0] {
+            for k in 0..=200_000 {
+                let j = (k as f32 / 100_000.0 - 0.5) * t as f32;
+                let f = ((t - j as f64) / t).clamp(0.0, 1.0);
+                assert_eq!(
+                    coverage_u16(j, t),
+                    (f * 65535.0).round() as u16,
+                    "J {j}, T {t}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn monahan_coverage_matches_its_quoted_values() {

@@ -64,9 +64,9 @@ impl InverseFft2 {
         (out, scaled)
     }
 
-    /// The rows pass into a new field. Its memory is not zeroed up front (a serial
-    /// `memset` of the whole field where freed memory is reused): each task zeroes its
-    /// own block of rows just before transforming into it, while the block is cached.
+    /// The rows pass into a new field, whose memory is written once by [`rows`](Self::rows)
+    /// and not zeroed first (a serial `memset` of the whole field where freed memory is
+    /// reused).
     fn rows_into_new(
         &self,
         half: &HalfSpectrum,
@@ -99,8 +99,9 @@ impl InverseFft2 {
     /// (no full transposed copy) and transforms them into the output. The DC bin (and
     /// the Nyquist bin for even N) of every row is real up to round-off because the
     /// spectrum is Hermitian (and every factor keeps it so).
-    /// Every element of `out` is initialized (zeroed, then written by the transform, then
-    /// multiplied by `scale` when given).
+    /// Each row is transformed into a row buffer in the cache, multiplied by `scale` when
+    /// given, and copied out: every element of `out` is written once and never read, so
+    /// `out` need not be initialized (no `memset` of the field first).
     fn rows(
         &self,
         half: &HalfSpectrum,
@@ -119,10 +120,10 @@ impl InverseFft2 {
                     (
                         vec![Complex32::new(0.0, 0.0); nh * TRANSPOSE_BLOCK],
                         vec![Complex32::new(0.0, 0.0); scratch_len],
+                        vec![0.0f32; nx],
                     )
                 },
-                |(block, scratch), (b, outs)| {
-                    let outs = zeroed(outs);
+                |(block, scratch, row), (b, outs)| {
                     let j0 = b * TRANSPOSE_BLOCK;
                     let nrows = outs.len() / nx;
                     for n in 0..nh {
@@ -147,22 +148,16 @@ impl InverseFft2 {
                             input[nh - 1].im = 0.0;
                         }
                         self.rows
-                            .process_with_scratch(input, output, scratch)
+                            .process_with_scratch(input, row, scratch)
                             .expect("buffer lengths come from the plan");
                         if let Some(s) = scale {
-                            output.iter_mut().for_each(|x| *x *= s);
+                            row.iter_mut().for_each(|x| *x *= s);
+                        }
+                        for (o, &v) in output.iter_mut().zip(row.iter()) {
+                            o.write(v);
                         }
                     }
                 },
             );
     }
-}
-
-/// `out` with every element set to zero, as initialized floats.
-fn zeroed(out: &mut [MaybeUninit<f32>]) -> &mut [f32] {
-    for x in out.iter_mut() {
-        x.write(0.0);
-    }
-    // SAFETY: every element was just written; MaybeUninit<f32> has f32's layout.
-    unsafe { std::slice::from_raw_parts_mut(out.as_mut_ptr().cast::<f32>(), out.len()) }
 }
