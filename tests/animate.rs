@@ -103,6 +103,34 @@ fn maps_without_heights_are_the_maps_written_with_them() {
     );
 }
 
+/// A still sea's foam threshold is resolved once for the sequence: its foam maps are
+/// those `generate` writes at each frame's time (resolved over that frame's J).
+#[test]
+fn a_still_seas_foam_maps_equal_generate_at_their_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(&["--frames", "2", "--format", "foam,foam.exr,normal"]);
+    a.extend(["--wind-speed", "30", "-o", "seq", "-q"]);
+    run_ok(dir.path(), &a);
+    let mut g = vec!["generate"];
+    g.extend(SEA);
+    g.extend(["--wind-speed", "30", "--time", "0.1", "-q"]);
+    g.extend(["-o", "g.foam.png", "-o", "g.foam.exr", "-o", "g.normal.png"]);
+    run_ok(dir.path(), &g);
+    for suffix in ["foam.png", "normal.png"] {
+        assert_eq!(
+            read(&dir.path().join(format!("g.{suffix}"))),
+            read(&dir.path().join(format!("seq/frame_00002.{suffix}"))),
+            "{suffix} of frame 2 (EXR sequences start at 1) differs from generate --time 0.1"
+        );
+    }
+    let exr = |p: &str| {
+        seasynth::export::exr::read_channels(&dir.path().join(p))
+            .unwrap()
+            .2
+    };
+    assert_eq!(exr("g.foam.exr"), exr("seq/frame_00002.foam.exr"));
+}
+
 #[test]
 fn a_loop_repeats_after_its_period_and_one_mapping_serves_every_frame() {
     let dir = tempfile::tempdir().unwrap();

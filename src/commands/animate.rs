@@ -252,6 +252,14 @@ pub fn run(args: AnimateArgs) -> Result<()> {
         f.start(&todo);
     }
     let foam = foam.as_ref();
+    // A still sea's foam map: J = 1 at every sample of every frame, so its threshold is
+    // resolved once here instead of over each frame's identical J.
+    let still_foam_threshold =
+        (foam.is_none() && map_kinds.iter().any(|(m, _)| *m == MapKind::Foam)).then(|| {
+            maps::FoamRule::of(&params)
+                .resolve(&vec![1.0f32; params.grid_spec().len()])
+                .threshold
+        });
     let bar = Progress::new(todo.len(), "frames", quiet, false);
     let cx_params = &params;
     // Frame k's files, staged first (a bad path fails before the work), its field and
@@ -290,7 +298,7 @@ pub fn run(args: AnimateArgs) -> Result<()> {
                     synthesis: syn,
                     up: options.up,
                     exr: options.exr,
-                    foam_threshold: foam.map(|f| f.threshold()),
+                    foam_threshold: foam.map(|f| f.threshold()).or(still_foam_threshold),
                     persistent_foam,
                 };
                 maps::write_map(m, e, st, &cx)

@@ -51,8 +51,10 @@ impl HeightMapping {
         if span <= 0.0 {
             return 0;
         }
-        let v = ((h as f64 - self.min_m) / span * 65535.0).round();
-        v.clamp(0.0, 65535.0) as u16
+        // round then clamp = clamp then round (the bounds are integers), and rounding a
+        // clamped value needs no library call.
+        let v = ((h as f64 - self.min_m) / span * 65535.0).clamp(0.0, 65535.0);
+        crate::fastmath::round_nonneg_f64(v) as u16
     }
 
     pub fn decode(&self, v: u16) -> f64 {

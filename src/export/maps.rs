@@ -248,21 +248,36 @@ fn write_map_exr(
 
 /// The 8-bit RGB bytes of a normal map.
 pub fn normal_rgb(normals: &[[f32; 3]]) -> Vec<u8> {
-    normals
-        .iter()
-        .flat_map(|n| n.map(|c| ((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0).round() as u8))
-        .collect()
+    let byte =
+        |c: f32| crate::fastmath::round_nonneg_f32((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0) as u8;
+    let mut rgb = vec![0u8; 3 * normals.len()];
+    rgb.par_chunks_mut(3 * 16384)
+        .zip(normals.par_chunks(16384))
+        .for_each(|(out, n)| {
+            for (o, n) in out.chunks_exact_mut(3).zip(n) {
+                o.copy_from_slice(&n.map(byte));
+            }
+        });
+    rgb
 }
 
 /// A 16-bit grayscale PNG of `values` (row-major, `spec.nx` wide).
 pub fn write_gray16<W: Write>(w: W, spec: &GridSpec, values: &[u16]) -> std::io::Result<()> {
     use super::png_par::{Layout, PngWriter};
     let mut png = PngWriter::new(w, (spec.nx, spec.ny), Layout::Gray16, &[])?;
-    let mut bytes = Vec::new();
-    for rows in values.chunks(spec.nx * 256) {
-        bytes.clear();
-        bytes.extend(rows.iter().flat_map(|v| v.to_be_bytes()));
-        png.write_rows(&bytes)?;
+    let rows = spec.nx * 256;
+    let mut bytes = vec![0u8; 2 * rows];
+    for values in values.chunks(rows) {
+        let bytes = &mut bytes[..2 * values.len()];
+        bytes
+            .par_chunks_mut(2 * 16384)
+            .zip(values.par_chunks(16384))
+            .for_each(|(out, v)| {
+                for (o, v) in out.chunks_exact_mut(2).zip(v) {
+                    o.copy_from_slice(&v.to_be_bytes());
+                }
+            });
+        png.write_rows(bytes)?;
     }
     png.finish()?.flush()
 }

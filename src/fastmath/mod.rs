@@ -60,6 +60,7 @@ const SIGN_MASK: u64 = 0x8000_0000_0000_0000;
 mod base2_f32;
 mod exp;
 mod ln;
+mod round;
 mod sin_cos;
 
 pub(crate) use base2_f32::{exp2_f32, exp2_parts_f32, log2_f32, log2_unit_f32, scale_f64};
@@ -67,6 +68,7 @@ pub use exp::exp;
 pub(crate) use exp::{exp_fast, exp_is_special};
 pub use ln::ln;
 pub(crate) use ln::{ln_is_special, ln_positive_normal};
+pub use round::{round_nonneg_f32, round_nonneg_f64};
 #[cfg(test)]
 pub(crate) use sin_cos::SIN_COS_CW_LIMIT;
 pub use sin_cos::sin_cos;
