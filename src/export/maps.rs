@@ -24,6 +24,7 @@ use crate::grid::GridSpec;
 pub use crate::measure::foam::{
     FoamRule, ResolvedFoam, coverage as foam_coverage, coverage_u16 as foam_value,
 };
+use crate::simd::{Isa, multiversion};
 
 /// What a wave-state map needs besides the state.
 pub struct MapContext<'a> {
@@ -246,19 +247,31 @@ fn write_map_exr(
     }
 }
 
-/// The 8-bit RGB bytes of a normal map.
+/// The 8-bit RGB bytes of a normal map: each component c to round((clamp(c, −1, 1) + 1)/2
+/// · 255), in parallel blocks compiled for the processor's vector instructions.
 pub fn normal_rgb(normals: &[[f32; 3]]) -> Vec<u8> {
-    let byte =
-        |c: f32| crate::fastmath::round_nonneg_f32((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0) as u8;
-    let mut rgb = vec![0u8; 3 * normals.len()];
+    normal_rgb_on(Isa::detect(), normals)
+}
+
+/// [`normal_rgb`] on the instruction set `isa` (every one gives the same bytes).
+pub(crate) fn normal_rgb_on(isa: Isa, normals: &[[f32; 3]]) -> Vec<u8> {
+    let c = normals.as_flattened();
+    let mut rgb = vec![0u8; c.len()];
     rgb.par_chunks_mut(3 * 16384)
-        .zip(normals.par_chunks(16384))
-        .for_each(|(out, n)| {
-            for (o, n) in out.chunks_exact_mut(3).zip(n) {
-                o.copy_from_slice(&n.map(byte));
-            }
-        });
+        .zip(c.par_chunks(3 * 16384))
+        .for_each(|(out, c)| normal_bytes(isa, c, out));
     rgb
+}
+
+multiversion! {
+    @on
+    /// The bytes of [`normal_rgb`]. Clamping (c + 1)/2·255 to 0..=255 is clamping c to
+    /// −1..=1 first (the map is monotone and takes ±1 to 0 and 255 exactly).
+    fn normal_bytes(isa: Isa, c: &[f32], out: &mut [u8]) {
+        for (o, &c) in out.iter_mut().zip(c) {
+            *o = crate::fastmath::round_clamped_f32((c + 1.0) * 0.5 * 255.0, 255.0) as u8;
+        }
+    }
 }
 
 /// A 16-bit grayscale PNG of `values` (row-major, `spec.nx` wide).
@@ -340,6 +353,38 @@ mod tests {
         assert_eq!(MapKind::from_path(Path::new("my.sea.png")), Ok(None));
         let e = MapKind::from_path(Path::new("x.foam.tif")).unwrap_err();
         assert!(e.contains(".foam.png"), "{e}");
+    }
+
+    #[test]
+    fn normal_bytes_are_the_clamped_rounded_components_on_every_instruction_set() {
+        // Components at and next to every half step of a byte, past ±1, and non-finite.
+        let mut c: Vec<f32> = vec![f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -0.0, 0.0];
+        c.extend([
+            -1.0,
+            1.0,
+            (-1.0f32).next_down(),
+            1.0f32.next_up(),
+            -7.0,
+            7.0,
+        ]);
+        for k in 0..=255 {
+            let x = (k as f32 + 0.5) / 127.5 - 1.0;
+            c.extend([x, x.next_down(), x.next_up()]);
+        }
+        c.extend((0..10_001).map(|i| (i as f32 * 1.3e-3).sin()));
+        while c.len() % 3 != 0 {
+            c.push(0.25);
+        }
+        let want: Vec<u8> = c
+            .iter()
+            .map(|&c| ((c.clamp(-1.0, 1.0) + 1.0) * 0.5 * 255.0).round() as u8)
+            .collect();
+        let normals: Vec<[f32; 3]> = c.chunks_exact(3).map(|n| [n[0], n[1], n[2]]).collect();
+        for isa in Isa::available() {
+            let got = normal_rgb_on(isa, &normals);
+            let first = got.iter().zip(&want).position(|(a, b)| a != b);
+            assert!(first.is_none(), "{isa:?}: byte {first:?} differs");
+        }
     }
 
     #[test]

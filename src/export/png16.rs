@@ -97,11 +97,7 @@ pub fn write_rows<W: Write>(
         bytes
             .par_chunks_mut(nx * 2)
             .zip(heights.par_chunks(nx))
-            .for_each(|(out, row)| {
-                for (o, &h) in out.chunks_exact_mut(2).zip(row) {
-                    o.copy_from_slice(&mapping.encode(h).to_be_bytes());
-                }
-            });
+            .for_each(|(out, row)| mapping.encode_be(row, out));
         png.write_rows(&bytes)?;
         first += rows;
     }

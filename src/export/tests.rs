@@ -63,6 +63,69 @@ fn mapping_encodes_the_range_ends_and_clamps() {
 }
 
 #[test]
+fn the_scalar_and_vector_encoders_give_the_documented_mappings_bytes_on_every_isa() {
+    // Heights at and next to every half step of a mapping, past both ends, and the
+    // non-finite ones, for a usual range, a tiny one and the flat and NaN spans.
+    let m = HeightMapping {
+        min_m: -1.7,
+        max_m: 2.3,
+    };
+    let mut hs: Vec<f32> = vec![f32::NAN, f32::INFINITY, f32::NEG_INFINITY, -0.0, 0.0];
+    hs.extend([
+        -1e30,
+        1e30,
+        -1.7,
+        2.3,
+        -1.7f32.next_down(),
+        2.3f32.next_up(),
+    ]);
+    for k in 0..=65535u32 {
+        let h = (m.min_m + (k as f64 + 0.5) * m.step_m()) as f32;
+        hs.extend([h, h.next_down(), h.next_up()]);
+    }
+    hs.extend((0..10_007).map(|i| (i as f32 * 7.31e-4).sin() * 3.0));
+    let mappings = [
+        m,
+        HeightMapping {
+            min_m: 0.25,
+            max_m: 0.25 + 1e-6,
+        },
+        HeightMapping {
+            min_m: 1.0,
+            max_m: 1.0,
+        },
+        HeightMapping {
+            min_m: 0.0,
+            max_m: f64::NAN,
+        },
+    ];
+    for m in mappings {
+        // The documented mapping with the library's round, and `encode` itself.
+        let span = m.max_m - m.min_m;
+        let lib = |h: f32| {
+            let v = (h as f64 - m.min_m) / span * 65535.0;
+            if span.is_nan() || span <= 0.0 || v.is_nan() {
+                0
+            } else {
+                v.clamp(0.0, 65535.0).round() as u16
+            }
+        };
+        let want: Vec<u8> = hs.iter().flat_map(|&h| lib(h).to_be_bytes()).collect();
+        let scalar: Vec<u8> = hs.iter().flat_map(|&h| m.encode(h).to_be_bytes()).collect();
+        assert!(
+            scalar == want,
+            "{m:?}: encode differs from the documented mapping"
+        );
+        for isa in crate::simd::Isa::available() {
+            let mut got = vec![0xAAu8; 2 * hs.len()];
+            m.encode_be_on(isa, &hs, &mut got);
+            let first = got.iter().zip(&want).position(|(a, b)| a != b);
+            assert!(first.is_none(), "{m:?} on {isa:?}: byte {first:?} differs");
+        }
+    }
+}
+
+#[test]
 fn a_failed_write_leaves_no_file_and_keeps_an_earlier_one() {
     let dir = tempfile::tempdir().unwrap();
     let target = dir.path().join("x.png");

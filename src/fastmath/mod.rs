@@ -68,7 +68,7 @@ pub use exp::exp;
 pub(crate) use exp::{exp_fast, exp_is_special};
 pub use ln::ln;
 pub(crate) use ln::{ln_is_special, ln_positive_normal};
-pub use round::{round_nonneg_f32, round_nonneg_f64};
+pub use round::{round_clamped_f32, round_clamped_f64};
 #[cfg(test)]
 pub(crate) use sin_cos::SIN_COS_CW_LIMIT;
 pub use sin_cos::sin_cos;

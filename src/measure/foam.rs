@@ -124,7 +124,7 @@ pub fn coverage(j: f32, threshold: f64) -> f32 {
 #[inline]
 pub fn coverage_u16(j: f32, threshold: f64) -> u16 {
     let f = ((threshold - j as f64) / threshold).clamp(0.0, 1.0);
-    crate::fastmath::round_nonneg_f64(f * 65535.0) as u16
+    crate::fastmath::round_clamped_f64(f * 65535.0, 65535.0) as u16
 }
 
 #[cfg(test)]
