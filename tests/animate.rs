@@ -88,11 +88,11 @@ fn maps_without_heights_are_the_maps_written_with_them() {
         a.extend(["--format", format, "-o", out, "-q"]);
         run_ok(dir.path(), &a);
     }
+    // Maps are frame_NNNNN.KIND.EXT; the heights frame_NNNNN.tif and the sidecar are not.
     let maps = |out: &str| -> Vec<(String, Vec<u8>)> {
         files_of(&dir.path().join(out))
             .into_iter()
-            .filter(|(name, _)| name != "sequence.json" && !name.ends_with("0.tif"))
-            .filter(|(name, _)| !name.ends_with("1.tif") && !name.ends_with("2.tif"))
+            .filter(|(name, _)| name.matches('.').count() == 2)
             .collect()
     };
     let (with, alone) = (maps("with"), maps("alone"));
@@ -104,31 +104,50 @@ fn maps_without_heights_are_the_maps_written_with_them() {
 }
 
 /// A still sea's foam threshold is resolved once for the sequence: its foam maps are
-/// those `generate` writes at each frame's time (resolved over that frame's J).
+/// those `generate` writes at each frame's time (resolved over that frame's J). With J ≡ 1
+/// the `auto` threshold leaves no foam; a threshold of 1.5 puts coverage ⅓ everywhere, so a
+/// wrongly resolved threshold shows.
 #[test]
 fn a_still_seas_foam_maps_equal_generate_at_their_time() {
     let dir = tempfile::tempdir().unwrap();
-    let mut a = args(&["--frames", "2", "--format", "foam,foam.exr,normal"]);
-    a.extend(["--wind-speed", "30", "-o", "seq", "-q"]);
-    run_ok(dir.path(), &a);
-    let mut g = vec!["generate"];
-    g.extend(SEA);
-    g.extend(["--wind-speed", "30", "--time", "0.1", "-q"]);
-    g.extend(["-o", "g.foam.png", "-o", "g.foam.exr", "-o", "g.normal.png"]);
-    run_ok(dir.path(), &g);
-    for suffix in ["foam.png", "normal.png"] {
+    for (i, threshold) in ["auto", "1.5"].into_iter().enumerate() {
+        let seq = format!("seq{i}");
+        let mut a = args(&["--frames", "2", "--format", "foam,foam.exr,normal"]);
+        a.extend(["--wind-speed", "30", "--foam-threshold", threshold]);
+        a.extend(["-o", &seq, "-q"]);
+        run_ok(dir.path(), &a);
+        let g_name = |suffix: &str| format!("g{i}.{suffix}");
+        let (png, exr_name, normal) =
+            (g_name("foam.png"), g_name("foam.exr"), g_name("normal.png"));
+        let mut g = vec!["generate"];
+        g.extend(SEA);
+        g.extend(["--wind-speed", "30", "--foam-threshold", threshold]);
+        g.extend([
+            "--time", "0.1", "-q", "-o", &png, "-o", &exr_name, "-o", &normal,
+        ]);
+        run_ok(dir.path(), &g);
+        for suffix in ["foam.png", "normal.png"] {
+            assert_eq!(
+                read(&dir.path().join(g_name(suffix))),
+                read(&dir.path().join(format!("{seq}/frame_00002.{suffix}"))),
+                "{threshold}: {suffix} of frame 2 (EXR sequences start at 1) differs from generate --time 0.1"
+            );
+        }
+        let exr = |p: &str| {
+            seasynth::export::exr::read_channels(&dir.path().join(p))
+                .unwrap()
+                .2
+        };
+        let foam = exr(&exr_name);
         assert_eq!(
-            read(&dir.path().join(format!("g.{suffix}"))),
-            read(&dir.path().join(format!("seq/frame_00002.{suffix}"))),
-            "{suffix} of frame 2 (EXR sequences start at 1) differs from generate --time 0.1"
+            foam,
+            exr(&format!("{seq}/frame_00002.foam.exr")),
+            "{threshold}"
         );
+        let want = if threshold == "auto" { 0.0 } else { 1.0 / 3.0 };
+        let all = (foam.iter().flat_map(|(_, v)| v)).all(|&v| (v as f64 - want).abs() < 1e-3);
+        assert!(all, "{threshold}: a still sea's foam is {want} everywhere");
     }
-    let exr = |p: &str| {
-        seasynth::export::exr::read_channels(&dir.path().join(p))
-            .unwrap()
-            .2
-    };
-    assert_eq!(exr("g.foam.exr"), exr("seq/frame_00002.foam.exr"));
 }
 
 #[test]

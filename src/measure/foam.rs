@@ -123,7 +123,8 @@ pub fn coverage(j: f32, threshold: f64) -> f32 {
 /// Foam coverage in 0..=65535: round(65535·clamp((T − J)/T, 0, 1)).
 #[inline]
 pub fn coverage_u16(j: f32, threshold: f64) -> u16 {
-    let f = ((threshold - j as f64) / threshold).clamp(0.0, 1.0);
+    // Clamping 65535·f to 0..=65535 is clamping f to 0..=1 first (exact at both ends).
+    let f = (threshold - j as f64) / threshold;
     crate::fastmath::round_clamped_f64(f * 65535.0, 65535.0) as u16
 }
 

@@ -24,15 +24,18 @@
 //! # Choppy height map
 //! The displaced surface is (x0 + λD(x0), h(x0)). Its height at a grid point x is h(x0)
 //! with x0 solving x0 + λD(x0) = x, found by Newton's method on the bilinear, periodic
-//! interpolant of λD. Each row is solved in four segments from left to right; a segment's
-//! first point starts from x0 = x − λD(x), every other point from its left neighbour's
-//! solution moved by one sample along x through the inverse Jacobian there
+//! interpolant of λD. Each row is solved in sixteen segments from left to right; a
+//! segment's first point starts from x0 = x − λD(x), every other point from its left
+//! neighbour's solution moved by one sample along x through the inverse Jacobian there
 //! (x0 − x changes by J⁻¹(1, 0) − (1, 0) per sample), which is within ~|∇²D| of the root.
-//! The step is (I + λ∇D)⁻¹(x0 + λD(x0) − x) with the interpolant's own gradient, or the
-//! fixed-point step x0 ← x − λD(x0) where det(I + λ∇D) < 0.05 (near folds). At most
-//! `CHOPPY_ITERATIONS` steps, fewer once Newton's step moves x0 by less than 1e-3 of a
-//! sample (it converges quadratically) or a fixed-point step by less than 1e-4. Then h(x0) by bilinear interpolation. Normal, foam and displacement maps stay on the undisplaced grid
-//! (vertex i, j of a displacement-mapped mesh), as engines apply them.
+//! The step is (I + λ∇D)⁻¹(x0 + λD(x0) − x) with the interpolant's own gradient (twice
+//! on the same cell where the first step stays in it), or the fixed-point step
+//! x0 ← x − λD(x0) where det(I + λ∇D) < 0.05 (near folds). At most `CHOPPY_ITERATIONS`
+//! steps, fewer once Newton's step moves x0 by less than 1e-3 of a sample (it converges
+//! quadratically) or leaves it within 1e-5 samples of its cell's root, or a fixed-point
+//! step moves it by less than 1e-4. Then h(x0) by bilinear interpolation. Single
+//! precision, vectorized: see [`resample`]. Normal, foam and displacement maps stay on the
+//! undisplaced grid (vertex i, j of a displacement-mapped mesh), as engines apply them.
 
 use std::f64::consts::TAU;
 use std::mem::MaybeUninit;

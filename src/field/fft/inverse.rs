@@ -150,11 +150,10 @@ impl InverseFft2 {
                         self.rows
                             .process_with_scratch(input, row, scratch)
                             .expect("buffer lengths come from the plan");
-                        if let Some(s) = scale {
-                            row.iter_mut().for_each(|x| *x *= s);
-                        }
-                        for (o, &v) in output.iter_mut().zip(row.iter()) {
-                            o.write(v);
+                        let pairs = output.iter_mut().zip(row.iter());
+                        match scale {
+                            Some(s) => pairs.for_each(|(o, &v)| _ = o.write(v * s)),
+                            None => pairs.for_each(|(o, &v)| _ = o.write(v)),
                         }
                     }
                 },

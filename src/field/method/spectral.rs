@@ -180,12 +180,7 @@ mod tests {
         p.validate().unwrap();
         let s = Spectral::new(&p).unwrap();
         let half = || fft::synthesize_spectrum(&s.setup(0.4));
-        let extras = Extras {
-            displacement: true,
-            jacobian: true,
-            slopes: true,
-            maps_only: false,
-        };
+        let extras = Extras::ALL;
         let (choppy, full) = s.heights(half(), extras);
         let (still, maps) = s.heights(
             half(),

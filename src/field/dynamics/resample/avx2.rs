@@ -1,6 +1,6 @@
 //! The choppy resampling of one row with AVX2: the sixteen segments of the row in two
-//! vectors of eight lanes, each corner's (λDx, λDy) pair fetched by one 64-bit gather.
-//! Every lane performs the scalar kernel's operations in the same order, so the bits are
+//! vectors of eight lanes; a cell's corner pairs (λDx, λDy) loaded 128 bits at a time and
+//! transposed, the heights gathered. Every lane performs the scalar kernel's operations in the same order, so the bits are
 //! the scalar kernel's.
 
 use std::arch::x86_64::*;
