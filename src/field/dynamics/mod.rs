@@ -34,8 +34,9 @@
 //! steps, fewer once Newton's step moves x0 by less than 1e-3 of a sample (it converges
 //! quadratically) or leaves it within 1e-5 samples of its cell's root, or a fixed-point
 //! step moves it by less than 1e-4. Then h(x0) by bilinear interpolation. Single
-//! precision, vectorized: see [`resample_choppy`]. Normal, foam and displacement maps stay on the
-//! undisplaced grid (vertex i, j of a displacement-mapped mesh), as engines apply them.
+//! precision, vectorized: see [`resample_choppy`]. Normal, foam and displacement maps
+//! stay on the undisplaced grid (vertex i, j of a displacement-mapped mesh), as engines
+//! apply them.
 
 use std::f64::consts::TAU;
 use std::mem::MaybeUninit;
