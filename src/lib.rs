@@ -34,6 +34,7 @@ pub mod io;
 pub mod limits;
 pub mod measure;
 pub mod pipeline;
+#[cfg(feature = "plot")]
 mod plot;
 pub mod raster;
 pub mod render;

@@ -17,323 +17,46 @@
 //! and, with `--foam-fade`, foam that persists and fades from frame to frame, the same
 //! bits in any run (such a sequence is computed as one run, in frame order).
 
-use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
-use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
+use anyhow::Result;
 
 use crate::cli::AnimateArgs;
-use crate::config::Params;
-use crate::error::{Error, ParamError};
-use crate::export::maps::{self, MapContext, MapEncoding, MapKind};
 use crate::export::options::ExportOptions;
-use crate::export::{Format, HeightMapping, Staged, exr, png16, tiff32};
-use crate::field::{Synthesis, Synthesizer};
-use crate::pipeline::foam_fade::{self, FoamRecord, SequenceFoam};
-use crate::pipeline::jobs::{self, FileKind as Kind, Progress};
-use crate::pipeline::memory::keep_freed_memory;
-
-/// A computed frame: its staged files, its field and its persistent foam.
-type Frame = (Vec<(Kind, Staged)>, Synthesis, Option<Vec<u16>>);
-
-/// The sequence sidecar, `DIR/sequence.json`.
-#[derive(Debug, Serialize, Deserialize)]
-struct SequenceDoc {
-    tool: String,
-    version: String,
-    frames: usize,
-    fps: f64,
-    /// Frame k shows t = start_time_s + k / fps.
-    start_time_s: f64,
-    /// Frame k's files carry the number start_frame + k.
-    #[serde(default)]
-    start_frame: usize,
-    /// The axis convention of displacement EXRs: "y" (R, G, B = x, height, −y) or "z"
-    /// (x, y, height).
-    #[serde(default)]
-    up: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    loop_period_s: Option<f64>,
-    /// File names: the pattern with {k} the file number (start_frame + k), 5 digits.
-    files: Vec<String>,
-    /// The one 16-bit mapping of every frame's height PNG.
-    mapping_min_m: f64,
-    mapping_max_m: f64,
-    mapping_source: String,
-    /// The foam of every frame: the threshold resolved once, the fade.
-    #[serde(default, skip_deserializing, skip_serializing_if = "Option::is_none")]
-    foam: Option<FoamRecord>,
-    params: Params,
-}
-
-/// The file of number `number` (the first frame's is `--start-frame`).
-fn frame_path(dir: &Path, number: usize, kind: Kind) -> PathBuf {
-    dir.join(format!("frame_{number:05}.{}", kind.suffix()))
-}
+use crate::pipeline::sequence::{Sequence, write_sequence};
 
 /// Runs `seasynth animate`.
 pub fn run(args: AnimateArgs) -> Result<()> {
     crate::commands::common::set_threads(args.threads)?;
-    keep_freed_memory();
     let params = crate::commands::common::resolve_params(&args.field)?;
-    if args.frames == 0 || args.frames > 1_000_000 {
-        return Err(Error::Param(ParamError {
-            name: "--frames".into(),
-            allowed: "1 … 1000000".into(),
-            got: args.frames.to_string(),
-        })
-        .into());
-    }
-    let mut kinds = Vec::new();
-    for f in &args.format {
-        let k = Kind::parse(f).map_err(Error::Param)?;
-        if !kinds.contains(&k) {
-            kinds.push(k);
-        }
-    }
-    let map_kinds: Vec<(MapKind, MapEncoding)> = kinds
-        .iter()
-        .filter_map(|k| match k {
-            Kind::Map(m, e) => Some((*m, *e)),
-            _ => None,
-        })
-        .collect();
     let mut flags = args.exr.flags();
     if let Some(up) = args.up.as_deref() {
         flags.push(("--up", up));
     }
-    let options = ExportOptions::from_flags(flags)?;
-    let heights: Vec<Format> = kinds
-        .iter()
-        .filter_map(|k| match k {
-            Kind::Png => Some(Format::Png16),
-            Kind::Tif => Some(Format::Tiff32),
-            Kind::Exr => Some(Format::Exr),
-            _ => None,
-        })
-        .collect();
-    options.check_outputs(&heights, &map_kinds, true)?;
-    let start = args
-        .start_frame
-        .unwrap_or(usize::from(kinds.iter().any(|k| k.is_exr())));
-    if start > 1_000_000_000 {
-        return Err(Error::Param(ParamError {
-            name: "--start-frame".into(),
-            allowed: "0 … 1000000000".into(),
-            got: start.to_string(),
-        })
-        .into());
-    }
-    let mut extras = maps::extras_for(&map_kinds);
-    extras.slopes |= kinds.contains(&Kind::Preview);
-    // Heights are written (or previewed) only by these; a sequence of maps alone skips
-    // the choppy resampling.
-    extras.maps_only = !kinds
-        .iter()
-        .any(|k| matches!(k, Kind::Png | Kind::Tif | Kind::Exr | Kind::Preview));
-    // Frames run `jobs` at a time, as many as the memory estimate allows, each with the
-    // frame before it being written (two frames a job); the draws are kept for the whole
-    // sequence (16 bytes a sample, measured).
-    let n = params.grid_spec().len() as u64;
-    let per_frame = crate::pipeline::memory::Footprint::of_field(&params, extras)
-        .with_outputs(kinds.len() as u64);
-    let jobs = jobs::parallel_jobs(args.jobs, per_frame.bytes(n, 2));
-    let [nx, ny] = params.grid.size.0;
-    crate::limits::check_memory(
-        per_frame.bytes(n, 2 * jobs as u64).saturating_add(16 * n),
-        &format!("{jobs} {nx}x{ny} {} frame(s) at once", params.method.name()),
-        args.field.force,
-    )?;
-    std::fs::create_dir_all(&args.dir)
-        .map_err(|e| Error::io(&args.dir, e))
-        .with_context(|| format!("cannot create {}", args.dir.display()))?;
-    let fps = params.motion.fps;
-    let time_of = |k: usize| params.time_s + k as f64 / fps;
-    let side_path = args.dir.join("sequence.json");
-    let earlier: Option<SequenceDoc> = if args.resume {
-        std::fs::read(&side_path)
-            .ok()
-            .and_then(|b| serde_json::from_slice(&b).ok())
-    } else {
-        None
-    };
-    if earlier
-        .as_ref()
-        .is_some_and(|e| e.params != params || e.frames != args.frames || e.start_frame != start)
-    {
-        return Err(Error::Output {
-            path: side_path.clone(),
-            message: "holds another sequence (other parameters, frame count or start frame): remove the folder or drop --resume".into(),
-        }
-        .into());
-    }
-    let synth = Synthesizer::new(&params, extras, true)?;
-    // Foam: one threshold for the sequence, and foam that persists and fades.
-    let mut foam = foam_fade::applies(&params, &map_kinds)
-        .then(|| SequenceFoam::new(&params, &synth, |k| params.time_s + k as f64 / fps));
-    let quiet = args.quiet;
     let started = Instant::now();
-    // One mapping for the whole sequence: given, kept from the earlier run, or the range
-    // of every frame's heights (a first pass without files).
-    let (mapping, source) = match (params.output.height_range, &earlier) {
-        (Some(r), _) => (
-            HeightMapping {
-                min_m: r.0[0],
-                max_m: r.0[1],
-            },
-            "--height-range".to_string(),
-        ),
-        (None, Some(e)) => (
-            HeightMapping {
-                min_m: e.mapping_min_m,
-                max_m: e.mapping_max_m,
-            },
-            e.mapping_source.clone(),
-        ),
-        (None, None) if kinds.contains(&Kind::Png) => {
-            let ranges = jobs::run_pool(args.frames, jobs, |k| {
-                let s = synth.heights(time_of(k)).stats();
-                (s.min_m, s.max_m)
-            });
-            (
-                jobs::union_range(ranges).expect("at least one frame"),
-                "min..max over all frames".to_string(),
-            )
-        }
-        (None, None) => (
-            HeightMapping {
-                min_m: 0.0,
-                max_m: 0.0,
-            },
-            "no 16-bit heights written".to_string(),
-        ),
-    };
-    if !(mapping.min_m.is_finite() && mapping.max_m.is_finite()) {
-        return Err(Error::NotFinite {
-            what: "the sequence's heights".into(),
-            detail: format!("range {} … {} m", mapping.min_m, mapping.max_m),
-        }
-        .into());
-    }
-    let doc = SequenceDoc {
-        tool: "seasynth".into(),
-        version: env!("CARGO_PKG_VERSION").into(),
+    let done = write_sequence(&Sequence {
+        params: &params,
         frames: args.frames,
-        fps,
-        start_time_s: params.time_s,
-        start_frame: start,
-        up: match options.up {
-            crate::export::options::UpAxis::Y => "y".into(),
-            crate::export::options::UpAxis::Z => "z".into(),
-        },
-        loop_period_s: params.motion.loop_period_s,
-        files: kinds
-            .iter()
-            .map(|k| format!("frame_{{k}}.{}", k.suffix()))
-            .collect(),
-        mapping_min_m: mapping.min_m,
-        mapping_max_m: mapping.max_m,
-        mapping_source: source,
-        foam: foam.as_ref().map(|f| f.record.clone()),
-        params: params.clone(),
-    };
-    Staged::create(&side_path)?.write_json(&doc)?;
-    let todo: Vec<usize> = (0..args.frames)
-        .filter(|&k| {
-            !args.resume
-                || !kinds
-                    .iter()
-                    .all(|&kind| frame_path(&args.dir, start + k, kind).is_file())
-        })
-        .collect();
-    if let Some(f) = foam.as_mut() {
-        f.start(&todo);
-    }
-    let foam = foam.as_ref();
-    // A still sea's foam map: J = 1 at every sample of every frame, so its threshold is
-    // resolved once here instead of over each frame's identical J.
-    let still_foam_threshold =
-        (foam.is_none() && map_kinds.iter().any(|(m, _)| *m == MapKind::Foam)).then(|| {
-            maps::FoamRule::of(&params)
-                .resolve(&vec![1.0f32; params.grid_spec().len()])
-                .threshold
-        });
-    let bar = Progress::new(todo.len(), "frames", quiet, false);
-    let cx_params = &params;
-    // Frame k's files, staged first (a bad path fails before the work), its field and
-    // its persistent foam (computed in frame order: see `pipeline::foam_fade`).
-    let compute = |i: usize| -> Result<Frame, Error> {
-        let k = todo[i];
-        let _foam_guard = foam.and_then(|f| f.guard(k));
-        let mut staged = Vec::new();
-        for &kind in &kinds {
-            staged.push((
-                kind,
-                Staged::create(&frame_path(&args.dir, start + k, kind))?,
-            ));
-        }
-        let syn: Synthesis = synth.frame(time_of(k));
-        crate::limits::check_finite(&syn.grid.stats(), &format!("frame {k}"))?;
-        let persistent_foam = foam.and_then(|f| f.persistent(k, &syn));
-        Ok((staged, syn, persistent_foam))
-    };
-    let write_file = |kind: Kind,
-                      st: Staged,
-                      syn: &Synthesis,
-                      persistent_foam: Option<&[u16]>|
-     -> Result<(), Error> {
-        match kind {
-            Kind::Png => st.write_with(|w| png16::write(w, &syn.grid, &mapping)),
-            Kind::Tif => st.write_with(|w| tiff32::write(w, &syn.grid)),
-            Kind::Exr => st.write_with(|w| exr::write_with(w, &syn.grid, options.exr)),
-            Kind::Preview => {
-                let img = crate::pipeline::preview::preview_of(cx_params, syn)?;
-                crate::export::rgb8::write(st, &img.rgb, (img.width, img.height))
-            }
-            Kind::Map(m, e) => {
-                let cx = MapContext {
-                    params: cx_params,
-                    synthesis: syn,
-                    up: options.up,
-                    exr: options.exr,
-                    foam_threshold: foam.map(|f| f.threshold()).or(still_foam_threshold),
-                    persistent_foam,
-                };
-                maps::write_map(m, e, st, &cx)
-            }
-        }
-    };
-    // The files of a frame are written at once, while the next frame is computed.
-    let write = |i: usize, (staged, syn, persistent_foam): Frame| {
-        staged
-            .into_par_iter()
-            .map(|(kind, st)| write_file(kind, st, &syn, persistent_foam.as_deref()))
-            .collect::<Result<(), Error>>()?;
-        bar.finished(&format!("frame {}", start + todo[i]));
-        Ok(())
-    };
-    // Persistent foam makes each frame wait for the one before it: one run, in order.
-    let runs = if foam.is_some_and(|f| f.fades()) {
-        1
-    } else {
-        jobs
-    };
-    let result = jobs::run_overlapped(todo.len(), runs, compute, write);
-    bar.finish();
-    result?;
-    if !quiet {
+        formats: &args.format,
+        options: ExportOptions::from_flags(flags)?,
+        start_frame: args.start_frame,
+        dir: &args.dir,
+        jobs: args.jobs,
+        resume: args.resume,
+        quiet: args.quiet,
+        force: args.field.force,
+    })?;
+    if !args.quiet {
         let secs = started.elapsed().as_secs_f64();
         eprintln!(
             "wrote {} frame(s) of {} to {} in {secs:.2} s ({:.2} frames/s), {} skipped; 16-bit mapping {:.4}..{:.4} m",
-            todo.len(),
+            done.written,
             args.frames,
             args.dir.display(),
-            todo.len() as f64 / secs.max(1e-9),
-            args.frames - todo.len(),
-            mapping.min_m,
-            mapping.max_m
+            done.written as f64 / secs.max(1e-9),
+            done.skipped,
+            done.mapping.min_m,
+            done.mapping.max_m
         );
     }
     Ok(())

@@ -8,7 +8,7 @@
 //! job whose files and sidecar are there with that hash.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -16,19 +16,17 @@ use anyhow::Result;
 use serde::{Deserialize, Serialize};
 
 use crate::cli::BatchArgs;
-use crate::config::layers::{self, Assignment, canonical_key};
-use crate::config::{Params, Range2};
+use crate::config::Range2;
+use crate::config::layers::canonical_key;
 use crate::error::{Error, ParamError};
 use crate::export::options::ExportOptions;
 use crate::export::sidecar::JobRecord;
 use crate::export::{Format, HeightMapping, OutputKind, Staged};
 use crate::field::Synthesis;
-use crate::pipeline::batch::design;
 use crate::pipeline::batch::files::{complete_files, hash_hex, remove_stale_temporaries, suffixes};
 use crate::pipeline::batch::index::{self, Index, Row, Status};
-use crate::pipeline::batch::plan::{
-    self, Items, JobSpec, Manifest, NameTemplate, Selection, Shard, Sweep,
-};
+use crate::pipeline::batch::list::{DesignArgs, Job, JobList, ListArgs, PlanRow, job_list};
+use crate::pipeline::batch::plan::{Items, Manifest, Selection, Shard, Sweep};
 use crate::pipeline::batch::scheduler::{self, Overrides, Task};
 use crate::pipeline::jobs::{self, Progress};
 use crate::pipeline::write::{SidecarExtras, write_field};
@@ -57,41 +55,6 @@ const KEEP_MAX_BYTES: u64 = 512 << 20;
 
 /// The mapping source recorded in sidecars of jobs whose range the batch computed.
 const BATCH_RANGE: &str = "min..max over every job of the batch";
-
-/// One job, resolved.
-struct Job {
-    index: usize,
-    name: String,
-    /// The parameters, or why they are bad.
-    params: std::result::Result<Params, String>,
-    values: BTreeMap<String, String>,
-}
-
-impl Job {
-    /// The job's index row: its number, name, swept values and `status`, nothing else.
-    fn row(&self, status: Status) -> Row {
-        Row {
-            job: self.index,
-            name: self.name.clone(),
-            status,
-            params: self.values.clone(),
-            files: Vec::new(),
-            stats: None,
-            seconds: None,
-            hash: None,
-            error: None,
-            scheduler: None,
-            task: None,
-        }
-    }
-
-    fn paths(&self, dir: &Path, suffixes: &[String]) -> Vec<PathBuf> {
-        suffixes
-            .iter()
-            .map(|s| dir.join(format!("{}.{s}", self.name)))
-            .collect()
-    }
-}
 
 pub fn run(args: BatchArgs) -> Result<()> {
     crate::commands::common::set_threads(args.threads)?;
@@ -140,87 +103,26 @@ pub fn run(args: BatchArgs) -> Result<()> {
     for s in &args.sweep {
         sweeps.push(Sweep::parse(s)?);
     }
-    for s in &sweeps {
-        plan::check_key(&s.key, &s.values[0], &s.origin)?;
-        check_sweep_values(s)?;
-    }
     let mut base = manifest.set.clone();
     base.extend(super::common::assignments(&args.field)?);
-    let preset = args.field.preset.clone().or(manifest.preset.clone());
-    let entries = if manifest.jobs.is_empty() {
-        vec![JobSpec {
-            preset: None,
-            assignments: Vec::new(),
-        }]
-    } else {
-        manifest.jobs.clone()
-    };
-    // Random designs: each drawn point is a job entry, its values its assignments.
-    let entries = design_entries(&args, entries, preset.as_deref(), &base, &sweeps)?;
-    let specs = plan::product(&entries, &sweeps)?;
-    let mut keys: Vec<String> = Vec::new();
-    for k in entries
-        .iter()
-        .flat_map(|e| e.assignments.iter().map(|a| &a.key))
-        .chain(sweeps.iter().map(|s| &s.key))
-    {
-        if !keys.iter().any(|x| canonical_key(x) == canonical_key(k)) {
-            keys.push(k.clone());
-        }
-    }
-    let template = match args.name.as_ref().or(manifest.name.as_ref()) {
-        Some(t) => NameTemplate::parse(t)?,
-        None => NameTemplate::default_for(&keys),
-    };
-    let total = specs.len();
-    let mut all: Vec<Job> = specs
-        .iter()
-        .enumerate()
-        .map(|(index, spec)| {
-            let mut assignments = base.clone();
-            assignments.extend(spec.assignments.iter().cloned());
-            let params =
-                layers::resolve(spec.preset.as_deref().or(preset.as_deref()), &assignments)
-                    .map_err(|e| e.to_string());
-            // A key's value: the resolved one, or as typed when the job is bad.
-            let typed = |k: &str| {
-                spec.assignments
-                    .iter()
-                    .rev()
-                    .find(|a| canonical_key(&a.key) == canonical_key(k))
-                    .map(|a| a.value.clone())
-            };
-            // The parameters as a tree once, not once per key and name placeholder.
-            let tree = params.as_ref().ok().and_then(plan::params_tree);
-            let value = |k: &str| {
-                tree.as_ref()
-                    .and_then(|t| plan::value_text(t, k))
-                    .or_else(|| typed(k))
-                    .unwrap_or_default()
-            };
-            let values = keys.iter().map(|k| (k.clone(), value(k))).collect();
-            let name = template.render(index, total, value);
-            Job {
-                index,
-                name,
-                params,
-                values,
-            }
-        })
-        .collect();
-    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
-    for j in &all {
-        if let Some(first) = names.insert(&j.name, j.index) {
-            return Err(Error::Set {
-                origin: format!("--name {}", template.text),
-                message: format!(
-                    "jobs {first} and {} are both named `{}`: put {{index}} or every swept key in the name",
-                    j.index, j.name
-                ),
-            }
-            .into());
-        }
-    }
+    let JobList {
+        jobs: mut all,
+        keys,
+        template,
+    } = job_list(ListArgs {
+        preset: args.field.preset.clone().or(manifest.preset.clone()),
+        base,
+        sweeps,
+        entries: manifest.jobs.clone(),
+        name: args.name.as_ref().or(manifest.name.as_ref()).cloned(),
+        design: DesignArgs {
+            sample: args.sample,
+            vary: args.vary.clone(),
+            design: args.design.clone(),
+            design_seed: args.design_seed.clone(),
+        },
+    })?;
+    let total = all.len();
 
     // ---- Schedulers, work items and the plan ----
     let (selection, task) = selection(&args, total)?;
@@ -380,7 +282,7 @@ pub fn run(args: BatchArgs) -> Result<()> {
         version: env!("CARGO_PKG_VERSION").into(),
         jobs: total,
         plan: plan_hash,
-        name_template: template.text.clone(),
+        name_template: template.clone(),
         formats: suffixes.clone(),
         keys: keys.clone(),
         mapping_min_m: mapping.map(|m| m.min_m),
@@ -619,99 +521,6 @@ fn plural(n: usize, noun: &str) -> String {
     }
 }
 
-/// Checks that every value of a sweep reads as a value of its key (a number for
-/// `wind-dir`, a method name for `method`, …), before any job is made: a range without
-/// its step (`0:360`) is named as such.
-fn check_sweep_values(sweep: &Sweep) -> Result<(), Error> {
-    for v in &sweep.values {
-        let a = Assignment {
-            origin: sweep.origin.clone(),
-            key: sweep.key.clone(),
-            value: v.clone(),
-        };
-        let message = match layers::apply(Default::default(), &[a]) {
-            Err(Error::Set { message, .. })
-                if ["invalid type", "invalid value", "unknown variant"]
-                    .iter()
-                    .any(|m| message.contains(m)) =>
-            {
-                message
-            }
-            _ => continue,
-        };
-        let range = match v.contains(':') {
-            true => "; a range is START:STOP:STEP (STOP excluded), e.g. 0:360:5",
-            false => "",
-        };
-        return Err(Error::Set {
-            origin: sweep.origin.clone(),
-            message: format!("`{v}` is not a value of {}: {message}{range}", sweep.key),
-        });
-    }
-    Ok(())
-}
-
-/// The job entries of a random design (`--sample N --vary KEY=DIST`): each of `entries`
-/// once per drawn point, or `entries` as they are without a design. Checked before any
-/// file is written: the design seed defaults to the seed of the batch's base parameters.
-fn design_entries(
-    args: &BatchArgs,
-    entries: Vec<JobSpec>,
-    preset: Option<&str>,
-    base: &[Assignment],
-    sweeps: &[Sweep],
-) -> Result<Vec<JobSpec>> {
-    let kind = design::DesignKind::parse(&args.design)?;
-    let Some(n) = args.sample else {
-        if let Some(v) = args.vary.first() {
-            return Err(Error::Set {
-                origin: format!("--vary {v}"),
-                message: "--vary needs --sample N, the number of points to draw".into(),
-            }
-            .into());
-        }
-        if args.design_seed.is_some() || kind != design::DesignKind::Random {
-            return Err(Error::Set {
-                origin: "--design".into(),
-                message: "--design and --design-seed need --sample N and --vary KEY=DIST".into(),
-            }
-            .into());
-        }
-        return Ok(entries);
-    };
-    let varies = args
-        .vary
-        .iter()
-        .map(|v| design::Vary::parse(v))
-        .collect::<crate::error::Result<Vec<_>>>()?;
-    let seed = match &args.design_seed {
-        Some(s) => s.trim().parse::<u64>().map_err(|_| {
-            Error::Param(ParamError {
-                name: "--design-seed".into(),
-                allowed: "a whole number from 0 to 18446744073709551615".into(),
-                got: s.clone(),
-            })
-        })?,
-        None => layers::resolve(preset, base)?.seed,
-    };
-    // The design's values are checked with the first job's other values.
-    let mut first = base.to_vec();
-    first.extend(entries[0].assignments.iter().cloned());
-    first.extend(sweeps.iter().map(|s| Assignment {
-        origin: s.origin.clone(),
-        key: s.key.clone(),
-        value: s.values[0].clone(),
-    }));
-    let preset = entries[0].preset.as_deref().or(preset);
-    let design = design::Design::new(kind, n, seed, varies, |a| {
-        let mut with = first.clone();
-        with.extend(a.iter().cloned());
-        layers::resolve(preset, &with).map(|_| ())
-    })?;
-    Ok(design.entries(&entries)?)
-}
-
-/// The index row of a job complete from an earlier run ([`complete_files`]).
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
     Some(Row {
@@ -807,17 +616,6 @@ fn earlier_tasks(dir: &Path, stem: &str, batch: &str) -> BTreeMap<usize, (String
         .into_iter()
         .filter_map(|r| Some((r.job, (r.scheduler?, r.task?))))
         .collect()
-}
-
-/// One job of `--plan`.
-#[derive(Serialize)]
-struct PlanRow<'a> {
-    job: usize,
-    name: &'a str,
-    seed: Option<u64>,
-    params: &'a BTreeMap<String, String>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    error: Option<&'a str>,
 }
 
 /// `--plan`: the selected jobs, in order, as CSV (`job,name,seed,<swept keys>,error`) or

@@ -15,6 +15,19 @@ pub const PLOTS: Allowed = Allowed {
     extensions: &["png"],
 };
 
+/// Refuses `flag` when this build draws no plots (built without the `plot` feature).
+pub fn need_plots(flag: &str, given: bool) -> Result<(), Error> {
+    match given && !cfg!(feature = "plot") {
+        true => Err(Error::Set {
+            origin: flag.into(),
+            message: "this seasynth was built without plots: build it with the `plot` \
+                      feature (on by default)"
+                .into(),
+        }),
+        false => Ok(()),
+    }
+}
+
 /// Sets the number of worker threads for the whole process.
 pub fn set_threads(threads: Option<usize>) -> Result<()> {
     if let Some(n) = threads {

@@ -19,46 +19,15 @@
 use std::path::Path;
 
 use anyhow::Result;
-use serde::Serialize;
 
 use crate::cli::SpectrumArgs;
 use crate::commands::common::PLOTS;
-use crate::config::validate::model_name;
-use crate::config::{Params, SpectrumModel};
 use crate::error::{Error, ParamError};
 use crate::export::Staged;
-use crate::field::{SeaModel, sea_model};
+use crate::field::sea_model;
+use crate::pipeline::reports::{no_frequency_spectrum, points_text};
+#[cfg(feature = "plot")]
 use crate::plot::spectrum::{PLOT_SIZE, PLOT2D_SIZE, render_plot, render_plot2d, wavenumber_map};
-
-/// One point of the frequency spectrum.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Point {
-    pub f_hz: f64,
-    pub s_m2_per_hz: f64,
-}
-
-/// What `--json` prints.
-#[derive(Debug, Serialize)]
-pub struct Report<'a> {
-    /// The model name as in presets (`pierson-moskowitz`, `jonswap`, `tma`).
-    pub spectrum: String,
-    /// F(f) at the requested frequencies, in the order given.
-    pub points: Vec<Point>,
-    /// Significant wave height of the model, 4·√m0, m.
-    pub hs_m: f64,
-    /// Frequency where F is largest, Hz.
-    pub fp_hz: f64,
-    /// Peak period 1/fp, s.
-    pub tp_s: f64,
-    /// m0 = ∫F df = (hs_m/4)², m².
-    pub m0_m2: f64,
-    /// Wavenumber of the peak frequency through the dispersion relation, rad/m.
-    pub kp_rad_per_m: f64,
-    /// 2π/kp, m (compare `analyze --json`'s `peak_wavelength_m`).
-    pub peak_wavelength_m: f64,
-    /// The fully resolved parameters.
-    pub params: &'a Params,
-}
 
 /// Parses `--freq`: comma-separated frequencies in Hz, each finite and > 0.
 pub fn parse_freqs(text: &str) -> Result<Vec<f64>, ParamError> {
@@ -88,41 +57,11 @@ pub fn parse_freqs(text: &str) -> Result<Vec<f64>, ParamError> {
     }
 }
 
-/// Why a model has no frequency spectrum in m²/Hz, for `--freq` and `--plot`.
-fn no_frequency_spectrum(model: SpectrumModel) -> String {
-    let what = match model {
-        SpectrumModel::Phillips => {
-            "phillips is a discrete wavenumber spectrum (Tessendorf's convention: A multiplies the \
-             discrete Fourier amplitudes)"
-        }
-        _ => "fractal is a wavenumber power law for terrain, without dispersion",
-    };
-    format!(
-        "{what}, so it has no frequency spectrum in m²/Hz; use a physical model \
-         (--spectrum pierson-moskowitz, jonswap or tma)"
-    )
-}
-
-/// A number as JSON writes it (shortest text that reads back to the same f64).
-pub fn number_text(v: f64) -> String {
-    serde_json::to_string(&v).unwrap_or_else(|_| v.to_string())
-}
-
-/// The CSV text: header `f_hz,s_m2_per_hz`, then one row per point.
-pub fn csv_text(points: &[Point]) -> String {
-    let mut s = String::from("f_hz,s_m2_per_hz\n");
-    for p in points {
-        s.push_str(&number_text(p.f_hz));
-        s.push(',');
-        s.push_str(&number_text(p.s_m2_per_hz));
-        s.push('\n');
-    }
-    s
-}
-
 /// Runs `seasynth spectrum`.
 pub fn run(args: SpectrumArgs) -> Result<()> {
     crate::commands::common::refuse_no_effect("spectrum", &args.field)?;
+    crate::commands::common::need_plots("--plot", args.plot.is_some())?;
+    crate::commands::common::need_plots("--plot2d", args.plot2d.is_some())?;
     // Through `Error`, so a bad value exits with code 2.
     let freqs = args
         .freq
@@ -171,12 +110,16 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
         (Some(freqs), Some(sea)) => Some(points_text(&params, sea, freqs, args.csv)?),
         _ => None,
     };
+    #[cfg(not(feature = "plot"))]
+    let _ = (plot, plot2d);
+    #[cfg(feature = "plot")]
     if let Some(staged) = plot {
         let sea = sea.as_ref().expect("checked above");
         let image = render_plot(&params, sea, freqs.as_deref().unwrap_or(&[]))
             .map_err(|e| Error::io(&staged.path, e))?;
         crate::export::rgb8::write(staged, &image, PLOT_SIZE)?;
     }
+    #[cfg(feature = "plot")]
     if let Some(staged) = plot2d {
         let map = wavenumber_map(&params, sea)?;
         let image = render_plot2d(&map).map_err(|e| Error::io(&staged.path, e))?;
@@ -188,43 +131,11 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
     Ok(())
 }
 
-/// The `--json` (or with `csv`, the `--csv`) text of F(f) at `freqs`.
-pub fn points_text(
-    params: &Params,
-    sea: &SeaModel,
-    freqs: &[f64],
-    csv: bool,
-) -> Result<String, serde_json::Error> {
-    let points: Vec<Point> = freqs
-        .iter()
-        .map(|&f| Point {
-            f_hz: f,
-            s_m2_per_hz: sea.freq.density(f),
-        })
-        .collect();
-    if csv {
-        return Ok(csv_text(&points));
-    }
-    let hs = sea.freq.hs_m();
-    let fp = sea.freq.peak_hz();
-    let kp = sea.dispersion.wavenumber(std::f64::consts::TAU * fp);
-    let report = Report {
-        spectrum: model_name(params.spectrum.model),
-        points,
-        hs_m: hs,
-        fp_hz: fp,
-        tp_s: 1.0 / fp,
-        m0_m2: (hs / 4.0) * (hs / 4.0),
-        kp_rad_per_m: kp,
-        peak_wavelength_m: std::f64::consts::TAU / kp,
-        params,
-    };
-    Ok(serde_json::to_string_pretty(&report)? + "\n")
-}
-
-#[cfg(test)]
+#[cfg(all(test, feature = "plot"))]
 mod tests {
     use super::*;
+    use crate::config::SpectrumModel;
+    use crate::pipeline::reports::{Point, csv_text};
     use crate::plot::spectrum::tests::params;
     use crate::spectrum::FrequencySpectrum;
 

@@ -2,17 +2,13 @@
 //! node — POSITION (f32 × 3, meters, +Y up), NORMAL (unit f32 × 3), TEXCOORD_0 (f32 × 2,
 //! v = y/Ly from the image's top-left) and u32 indices of counter-clockwise triangles.
 //!
-//! The JSON is built with `gltf-json`; the container (12-byte header, a JSON chunk padded
+//! The JSON is serialized from the few glTF objects a mesh needs; the container (12-byte header, a JSON chunk padded
 //! with spaces, a BIN chunk) is written here, streaming the vertex data in batches of
 //! rows, so a mesh never sits in memory whole. The BIN chunk holds, in order, the positions, the
 //! normals, the texture coordinates and the indices, each a multiple of 4 bytes.
 
-use std::collections::BTreeMap;
 use std::io::{self, Write};
 
-use gltf_json as json;
-use json::validation::Checked::Valid;
-use json::validation::USize64;
 use rayon::prelude::*;
 
 use super::mesh::{Mesh, MeshLayout, Tile};
@@ -63,6 +59,101 @@ const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
+/// The glTF objects a mesh of one node needs, serialized in the specification's
+/// camelCase names and in the order the fields are declared.
+mod gltf {
+    use serde::Serialize;
+
+    /// `ARRAY_BUFFER` and `ELEMENT_ARRAY_BUFFER`, the targets of vertex and index views.
+    pub const ARRAY_BUFFER: u32 = 34962;
+    pub const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+    /// `FLOAT` and `UNSIGNED_INT` component types.
+    pub const F32: u32 = 5126;
+    pub const U32: u32 = 5125;
+
+    #[derive(Serialize)]
+    pub struct Root {
+        pub accessors: Vec<Accessor>,
+        pub asset: Asset,
+        pub buffers: Vec<Buffer>,
+        #[serde(rename = "bufferViews")]
+        pub buffer_views: Vec<View>,
+        pub scene: u32,
+        pub meshes: Vec<Mesh>,
+        pub nodes: Vec<Node>,
+        pub scenes: Vec<Scene>,
+    }
+
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    pub struct Accessor {
+        pub buffer_view: usize,
+        pub count: usize,
+        pub component_type: u32,
+        #[serde(rename = "type")]
+        pub kind: &'static str,
+        /// The f32 bounds widened to f64, so they print as the exact binary values.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        pub min: Option<[f64; 3]>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        pub max: Option<[f64; 3]>,
+    }
+
+    #[derive(Serialize)]
+    pub struct Asset {
+        pub generator: String,
+        pub version: &'static str,
+    }
+
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    pub struct Buffer {
+        pub byte_length: usize,
+    }
+
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    pub struct View {
+        pub buffer: u32,
+        pub byte_length: usize,
+        pub byte_offset: usize,
+        pub target: u32,
+    }
+
+    #[derive(Serialize)]
+    pub struct Mesh {
+        pub name: String,
+        pub primitives: [Primitive; 1],
+    }
+
+    #[derive(Serialize)]
+    pub struct Primitive {
+        pub attributes: Attributes,
+        pub indices: usize,
+    }
+
+    #[derive(Serialize)]
+    pub struct Attributes {
+        #[serde(rename = "POSITION")]
+        pub position: usize,
+        #[serde(rename = "NORMAL")]
+        pub normal: usize,
+        #[serde(rename = "TEXCOORD_0")]
+        pub texcoord_0: usize,
+    }
+
+    #[derive(Serialize)]
+    pub struct Node {
+        pub mesh: u32,
+        pub name: String,
+    }
+
+    #[derive(Serialize)]
+    pub struct Scene {
+        pub nodes: [u32; 1],
+    }
+}
+
 /// The JSON document of a mesh of `vertices` and `triangles` whose positions span
 /// `min`..`max`, and the byte length of its BIN chunk.
 fn document(
@@ -71,108 +162,69 @@ fn document(
     triangles: usize,
     min: [f32; 3],
     max: [f32; 3],
-) -> (json::Root, usize) {
+) -> (gltf::Root, usize) {
     let sections = [vertices * 12, vertices * 12, vertices * 8, triangles * 12];
     let bin_len: usize = sections.iter().sum();
-    let mut root = json::Root {
-        asset: json::Asset {
-            generator: Some(format!("seasynth {}", env!("CARGO_PKG_VERSION"))),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
-    let buffer = root.push(json::Buffer {
-        byte_length: USize64::from(bin_len),
-        extensions: Default::default(),
-        extras: Default::default(),
-        name: None,
-        uri: None,
-    });
     let mut offset = 0;
-    let mut views = Vec::new();
-    for (k, &len) in sections.iter().enumerate() {
-        let target = if k == 3 {
-            json::buffer::Target::ElementArrayBuffer
-        } else {
-            json::buffer::Target::ArrayBuffer
+    let buffer_views = sections
+        .iter()
+        .enumerate()
+        .map(|(k, &len)| {
+            let view = gltf::View {
+                buffer: 0,
+                byte_length: len,
+                byte_offset: offset,
+                target: match k {
+                    3 => gltf::ELEMENT_ARRAY_BUFFER,
+                    _ => gltf::ARRAY_BUFFER,
+                },
+            };
+            offset += len;
+            view
+        })
+        .collect();
+    let accessor =
+        |view, count, kind, component_type, bounds: Option<([f32; 3], [f32; 3])>| gltf::Accessor {
+            buffer_view: view,
+            count,
+            component_type,
+            kind,
+            min: bounds.map(|b| b.0.map(f64::from)),
+            max: bounds.map(|b| b.1.map(f64::from)),
         };
-        views.push(root.push(json::buffer::View {
-            buffer,
-            byte_length: USize64::from(len),
-            byte_offset: Some(USize64::from(offset)),
-            byte_stride: None,
-            extensions: Default::default(),
-            extras: Default::default(),
-            name: None,
-            target: Some(Valid(target)),
-        }));
-        offset += len;
-    }
-    let mut accessor =
-        |view, count: usize, kind, component, bounds: Option<([f32; 3], [f32; 3])>| {
-            root.push(json::Accessor {
-                buffer_view: Some(view),
-                byte_offset: None,
-                count: USize64::from(count),
-                component_type: Valid(json::accessor::GenericComponentType(component)),
-                extensions: Default::default(),
-                extras: Default::default(),
-                type_: Valid(kind),
-                min: bounds.map(|b| json::Value::from(Vec::from(b.0))),
-                max: bounds.map(|b| json::Value::from(Vec::from(b.1))),
-                name: None,
-                normalized: false,
-                sparse: None,
-            })
-        };
-    use json::accessor::{ComponentType, Type};
-    let positions = accessor(
-        views[0],
-        vertices,
-        Type::Vec3,
-        ComponentType::F32,
-        Some((min, max)),
-    );
-    let normals = accessor(views[1], vertices, Type::Vec3, ComponentType::F32, None);
-    let uvs = accessor(views[2], vertices, Type::Vec2, ComponentType::F32, None);
-    let indices = accessor(
-        views[3],
-        triangles * 3,
-        Type::Scalar,
-        ComponentType::U32,
-        None,
-    );
-    let mut attributes = BTreeMap::new();
-    attributes.insert(Valid(json::mesh::Semantic::Positions), positions);
-    attributes.insert(Valid(json::mesh::Semantic::Normals), normals);
-    attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), uvs);
-    let mesh = root.push(json::Mesh {
-        extensions: Default::default(),
-        extras: Default::default(),
-        name: Some(name.to_string()),
-        primitives: vec![json::mesh::Primitive {
-            attributes,
-            extensions: Default::default(),
-            extras: Default::default(),
-            indices: Some(indices),
-            material: None,
-            mode: Valid(json::mesh::Mode::Triangles),
-            targets: None,
+    let root = gltf::Root {
+        accessors: vec![
+            accessor(0, vertices, "VEC3", gltf::F32, Some((min, max))),
+            accessor(1, vertices, "VEC3", gltf::F32, None),
+            accessor(2, vertices, "VEC2", gltf::F32, None),
+            accessor(3, triangles * 3, "SCALAR", gltf::U32, None),
+        ],
+        asset: gltf::Asset {
+            generator: format!("seasynth {}", env!("CARGO_PKG_VERSION")),
+            version: "2.0",
+        },
+        buffers: vec![gltf::Buffer {
+            byte_length: bin_len,
         }],
-        weights: None,
-    });
-    let node = root.push(json::Node {
-        mesh: Some(mesh),
-        name: Some(name.to_string()),
-        ..Default::default()
-    });
-    let scene = root.push(json::Scene {
-        extensions: Default::default(),
-        extras: Default::default(),
-        name: None,
-        nodes: vec![node],
-    });
-    root.scene = Some(scene);
+        buffer_views,
+        scene: 0,
+        meshes: vec![gltf::Mesh {
+            name: name.to_string(),
+            primitives: [gltf::Primitive {
+                attributes: gltf::Attributes {
+                    position: 0,
+                    normal: 1,
+                    texcoord_0: 2,
+                },
+                indices: 3,
+            }],
+        }],
+        nodes: vec![gltf::Node {
+            mesh: 0,
+            name: name.to_string(),
+        }],
+        scenes: vec![gltf::Scene { nodes: [0] }],
+    };
     (root, bin_len)
 }
 
@@ -212,7 +264,7 @@ pub fn write_tile<W: Write + ?Sized>(
             },
         );
     let (root, bin_len) = document(name, nw * nh, tile.triangle_count(), min, max);
-    let mut text = root.to_vec().map_err(io::Error::other)?;
+    let mut text = serde_json::to_vec(&root).map_err(io::Error::other)?;
     while text.len() % 4 != 0 {
         text.push(b' ');
     }
@@ -273,14 +325,10 @@ mod tests {
     fn the_document_lays_out_four_aligned_sections_and_serializes() {
         let (root, bin) = document("t", 6, 4, [0.0; 3], [1.0; 3]);
         assert_eq!(bin, 6 * 12 + 6 * 12 + 6 * 8 + 4 * 12);
-        let offsets: Vec<u64> = root
-            .buffer_views
-            .iter()
-            .map(|v| v.byte_offset.unwrap().0)
-            .collect();
+        let offsets: Vec<usize> = root.buffer_views.iter().map(|v| v.byte_offset).collect();
         assert_eq!(offsets, [0, 72, 144, 192]);
-        assert_eq!(root.accessors[3].count.0, 12, "three indices per triangle");
-        let text = String::from_utf8(root.to_vec().unwrap()).unwrap();
+        assert_eq!(root.accessors[3].count, 12, "three indices per triangle");
+        let text = serde_json::to_string(&root).unwrap();
         assert!(
             text.contains("\"POSITION\"") && text.contains("\"TEXCOORD_0\""),
             "{text}"

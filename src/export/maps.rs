@@ -92,6 +92,20 @@ pub fn foam_coverage_of(
     Some((c, foam))
 }
 
+/// The foam coverage 0..1 at every grid point of a synthesis (which computed the
+/// Jacobian, or is not choppy) at the threshold `threshold`: a foam EXR's values.
+pub fn foam_coverage_at(synthesis: &crate::field::Synthesis, threshold: f64) -> Vec<f32> {
+    let len = synthesis.grid.spec.len();
+    match synthesis.surface.jacobian.as_ref() {
+        Some(j) => j
+            .values(len)
+            .par_iter()
+            .map(|&j| foam_coverage(j, threshold))
+            .collect(),
+        None => vec![foam_coverage(1.0, threshold); len],
+    }
+}
+
 /// The derived fields the given maps need (a displacement EXR carries foam when the sea
 /// is choppy).
 pub fn extras_for(kinds: &[(MapKind, MapEncoding)]) -> crate::field::dynamics::Extras {

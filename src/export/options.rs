@@ -127,6 +127,20 @@ fn count(name: &str, text: &str, max: usize) -> Result<usize> {
     }
 }
 
+/// The export flags [`ExportOptions::from_flags`] takes.
+pub const FLAGS: &[&str] = &[
+    "--up",
+    "--mesh-step",
+    "--vertical-scale",
+    "--tiles",
+    "--tile-uv",
+    "--periodic-tiles",
+    "--engine",
+    "--byte-order",
+    "--exr-compression",
+    "--exr-half",
+];
+
 impl ExportOptions {
     /// Parses the export flags given, as (flag, text) in command-line order; each bad
     /// value is one error naming the flag and what is allowed. A switch (`--periodic-tiles`)
@@ -141,7 +155,21 @@ impl ExportOptions {
         Ok(o)
     }
 
-    /// Parses one export flag.
+    /// [`from_flags`](Self::from_flags) with the flags' names as owned text (`--up`,
+    /// `--exr-half` with any value, …).
+    pub fn from_named_flags(flags: &[(String, String)]) -> Result<Self> {
+        let mut o = Self::default();
+        for (name, text) in flags {
+            let flag = FLAGS
+                .iter()
+                .find(|f| **f == name.as_str())
+                .ok_or_else(|| bad("export flag", &FLAGS.join(", "), name))?;
+            o.set(flag, text)?;
+        }
+        Ok(o)
+    }
+
+    /// Parses one export flag (one of [`FLAGS`]).
     fn set(&mut self, flag: &'static str, t: &str) -> Result<()> {
         let o = self;
         match flag {
@@ -210,11 +238,7 @@ impl ExportOptions {
                 )?
             }
             _ => {
-                return Err(bad(
-                    "export flag",
-                    "--up, --mesh-step, --vertical-scale, --tiles, --tile-uv, --periodic-tiles, --engine, --byte-order, --exr-compression or --exr-half",
-                    flag,
-                ));
+                return Err(bad("export flag", &FLAGS.join(", "), flag));
             }
         }
         o.given.push(flag);

@@ -8,7 +8,7 @@ pub const PLOT_SIZE: (u32, u32) = (800, 500);
 /// Decades of S(k) shown below the highest value.
 const PLOT_DECADES: f64 = 8.0;
 /// Font of every text in the plot.
-const FONT: &str = "sans-serif";
+use super::FONT;
 
 /// A label of S(k)'s plot: [`super::short_number`] in exponent form below 10⁻³.
 fn short_number(v: f64) -> String {
@@ -56,6 +56,7 @@ pub fn render_plot(a: &Analysis, name: &str) -> std::io::Result<Vec<u8>> {
     let k_hi = k_hi.max(k_lo * 10.0);
     let clamp = |v: f64| v.clamp(y_lo, y_hi);
     {
+        super::register_fonts();
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         let (head, body) = root.split_vertically(62);

@@ -5,6 +5,26 @@ pub mod analysis;
 pub mod spectrum;
 pub mod waves;
 
+/// The family every plot's text names.
+const FONT: &str = "sans-serif";
+
+/// Registers the embedded DejaVu Sans (regular and bold) as `sans-serif`, once per
+/// process: the plots draw their text with it, whatever fonts the system has.
+fn register_fonts() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        use plotters::style::{FontStyle, register_font};
+        for (style, bytes) in [
+            (FontStyle::Normal, dejavu::sans::regular()),
+            (FontStyle::Bold, dejavu::sans::bold()),
+        ] {
+            if register_font(FONT, style, bytes).is_err() {
+                unreachable!("the embedded DejaVu Sans is a valid font");
+            }
+        }
+    });
+}
+
 /// The chart layout both log–log plots share: margins and label areas, in pixels.
 fn log_log_chart<'a, 'b, DB: plotters::prelude::DrawingBackend>(
     body: &'a plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,

@@ -100,7 +100,7 @@ fn spreading_name(params: &Params) -> String {
 }
 
 /// Font of every text in the plots.
-const FONT: &str = "sans-serif";
+use super::FONT;
 
 /// Draws F(f) on log–log axes into an RGB buffer of [`PLOT_SIZE`].
 pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::Result<Vec<u8>> {
@@ -128,6 +128,7 @@ pub fn render_plot(params: &Params, sea: &SeaModel, marks: &[f64]) -> std::io::R
     let y_hi = 10f64.powf((peak * 3.0).log10().ceil());
     let y_lo = 10f64.powf((peak * 10f64.powf(-PLOT_DECADES)).log10().floor());
     {
+        super::register_fonts();
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         let (head, body) = root.split_vertically(62);
@@ -370,6 +371,7 @@ pub fn render_plot2d(map: &WavenumberMap) -> std::io::Result<Vec<u8>> {
     const LEFT: i32 = 80;
     const TOP: i32 = 70;
     {
+        super::register_fonts();
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         root.draw(&Text::new(

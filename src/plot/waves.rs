@@ -8,7 +8,7 @@ use crate::measure::waves::WaveStats;
 
 /// Size of the `--plot-waves` image, pixels.
 pub const WAVE_PLOT_SIZE: (u32, u32) = (800, 500);
-const FONT: &str = "sans-serif";
+use super::FONT;
 /// The smallest probability drawn.
 const P_MIN: f64 = 1e-5;
 /// Largest level over Hs drawn.
@@ -42,6 +42,7 @@ pub fn render_wave_plot(
     let (width, height) = WAVE_PLOT_SIZE;
     let mut buf = vec![0u8; (width * height * 3) as usize];
     {
+        super::register_fonts();
         let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_err)?;
         let (head, body) = root.split_vertically(62);

@@ -4,6 +4,7 @@
 pub mod design;
 pub mod files;
 pub mod index;
+pub mod list;
 pub mod plan;
 pub mod scheduler;
 
