@@ -1,0 +1,93 @@
+"""Every call into the `seasynth` Python module, in one place.
+
+The rest of the add-on asks this module for parameters, frames and bakes, so a change in
+the module's names is a change here only. Errors in parameters come back as `SeaError`,
+whose text is seasynth's own one-line message (`--wind-speed (wind.speed_mps) must be
+> 0 and ≤ 100 m/s (got -3)`).
+"""
+
+try:
+    import seasynth as _ss
+except ImportError as e:  # the add-on still registers and says what is missing
+    _ss = None
+    IMPORT_ERROR = str(e)
+else:
+    IMPORT_ERROR = ""
+
+
+class SeaError(ValueError):
+    """A parameter seasynth refuses, or the module missing; str() is one line."""
+
+
+def available():
+    return _ss is not None
+
+
+def missing_message():
+    return (
+        "the seasynth Python module is not found by Blender's Python "
+        f"({IMPORT_ERROR}); see docs/blender.md, Install"
+    )
+
+
+def _module():
+    if _ss is None:
+        raise SeaError(missing_message())
+    return _ss
+
+
+def _wrap(call, *args, **kwargs):
+    ss = _module()
+    try:
+        return call(*args, **kwargs)
+    except ss.ParamError as e:
+        raise SeaError(str(e)) from None
+    except (ValueError, TypeError, OverflowError) as e:
+        # A value Python could not hand to seasynth at all (a negative size, say).
+        raise SeaError(str(e)) from None
+
+
+def version():
+    return getattr(_ss, "__version__", "?") if _ss is not None else ""
+
+
+def params(flags, keys):
+    """Parameters from CLI-style flags (`wind_speed=12`) and preset keys
+    (`{"motion.fps": 24.0}`): a `seasynth.Params`."""
+    ss = _module()
+    return _wrap(ss.Params, keys=keys, **flags)
+
+
+def params_from_dict(d):
+    return _wrap(_module().Params.from_dict, d)
+
+
+def replace(p, **flags):
+    return _wrap(p.replace, **flags)
+
+
+def resolved(p):
+    """The fully resolved parameters (what a sidecar's `params` holds)."""
+    return p.to_dict()
+
+
+def frame(p, time_s, maps):
+    """The sea at `time_s` seconds, with the extra `maps` ("displacement", "normal",
+    "foam"): a frame with `height`, `displacement`, `normal`, `foam` (numpy float32,
+    rows along y), `stats` and `sidecar()`."""
+    return _wrap(_module().generate, p, time=time_s, maps=tuple(maps))
+
+
+def write_sequence(p, folder, frames, formats, start_frame, up="z", exr_half=False, exr_compression="zip"):
+    """The files of `seasynth animate --format FORMATS --up UP --start-frame START -o FOLDER`."""
+    return _wrap(
+        _module().write_sequence,
+        p,
+        folder,
+        frames=frames,
+        formats=list(formats),
+        up=up,
+        start_frame=start_frame,
+        exr_half=exr_half,
+        exr_compression=exr_compression,
+    )

@@ -1,0 +1,370 @@
+"""The live sea: seasynth's frame at the scene time written into the object's mesh.
+
+Scene frame F shows seasynth time t = time_offset + (F − frame_start)/fps, fps =
+render.fps / render.fps_base: frame k = F − frame_start of `seasynth animate --time
+time_offset --fps fps`, and file number F of a sequence baked with `--start-frame
+frame_start` (the add-on's bake). The mesh has one vertex per sample, row by row
+(vertex j·nx + i is sample (i, j)), at (x + λDx, y + λDy, h) in object space, meters,
+x = (i [+ ½])·Lx/nx, y = (j [+ ½])·Ly/ny: the displaced vertex of the sample, exactly as
+`animate --format disp.exr --up z` describes it. Everything moves through numpy and
+`foreach_set`; no Python loop runs over vertices.
+"""
+
+import json
+from contextlib import contextmanager
+
+import bpy
+import numpy as np
+
+from . import engine, material
+from .props import PHYSICAL
+
+FOAM_ATTR = "seasynth_foam"
+NORMAL_ATTR = "seasynth_normal"
+
+_suspended = 0
+# Per object (by its pointer): the parameters of the live frames and the flat grid.
+_states = {}
+
+
+@contextmanager
+def suspended():
+    """Setting changes inside do not regenerate the sea (several fields at once)."""
+    global _suspended
+    _suspended += 1
+    try:
+        yield
+    finally:
+        _suspended -= 1
+
+
+def scene_fps(scene):
+    return scene.render.fps / scene.render.fps_base
+
+
+def frame_time(scene, time0, frame=None):
+    """seasynth time of scene `frame` (default: the current one, subframe included)."""
+    f = scene.frame_current_final if frame is None else frame
+    return time0 + (f - scene.frame_start) / scene_fps(scene)
+
+
+def panel_args(s, scene):
+    """The panel as seasynth flags and preset keys."""
+    flags = dict(
+        preset=s.preset,
+        method=s.method,
+        size=s.size,
+        extent=s.extent,
+        wind_speed=s.wind_speed,
+        wind_dir=s.wind_dir,
+        spectrum=s.spectrum,
+        choppiness=s.choppiness,
+        seed=s.seed,
+        time=s.time_offset,
+        sample_at=s.sample_at,
+        nonlinear="second-order" if s.second_order else "linear",
+    )
+    if s.spectrum in PHYSICAL:
+        flags["spreading"] = s.spreading
+    if s.loop_period > 0.0:
+        flags["loop_period"] = s.loop_period
+    keys = {"motion.fps": scene_fps(scene)}
+    text = s.extra_json.strip()
+    if text:
+        try:
+            extra = json.loads(text)
+        except json.JSONDecodeError as e:
+            raise engine.SeaError(f"More Keys: not JSON ({e})") from None
+        if not isinstance(extra, dict):
+            raise engine.SeaError('More Keys: a JSON object of preset keys, e.g. {"spectrum.gamma": 2.0}')
+        keys.update(extra)
+    return flags, keys
+
+
+class State:
+    """What the live frames need, derived once from the resolved parameters."""
+
+    def __init__(self, params, resolved, params_json, sidecar):
+        self.params = params
+        self.resolved = resolved
+        self.json = params_json
+        self.sidecar = sidecar
+        grid = resolved["grid"]
+        self.nx, self.ny = (int(v) for v in grid["size"])
+        self.lx, self.ly = (float(v) for v in grid["extent_m"])
+        self.offset = 0.5 if grid.get("sample_at", "corners") == "centers" else 0.0
+        self.time0 = float(resolved.get("time_s", 0.0))
+        motion = resolved.get("motion", {})
+        self.choppy = float(motion.get("choppiness", 0.0)) != 0.0
+        i = (np.arange(self.nx, dtype=np.float64) + self.offset) * (self.lx / self.nx)
+        j = (np.arange(self.ny, dtype=np.float64) + self.offset) * (self.ly / self.ny)
+        self.x = np.tile(i, self.ny)
+        self.y = np.repeat(j, self.nx)
+
+
+def _pin_foam(p, resolved, wanted):
+    """`animate` resolves an "auto" foam threshold once, at its first frame (t = time);
+    the live frames use that same number, so frame F's foam is `animate`'s frame F's.
+    Returns the parameters for the live frames and the first frame's sidecar."""
+    f0 = engine.frame(p, float(resolved.get("time_s", 0.0)), ("foam",) if wanted else ())
+    sidecar = f0.sidecar()
+    auto = resolved.get("motion", {}).get("foam_threshold", "auto") == "auto"
+    if wanted and auto:
+        thr = (sidecar.get("foam") or {}).get("threshold_resolved")
+        if thr is not None:
+            p = engine.replace(p, foam_threshold=float(thr))
+    return p, sidecar
+
+
+def make_state(s, scene):
+    """Validates the panel through seasynth; raises SeaError with seasynth's message."""
+    flags, keys = panel_args(s, scene)
+    p = engine.params(flags, keys)
+    resolved = engine.resolved(p)
+    live, sidecar = _pin_foam(p, resolved, s.foam)
+    return State(live, resolved, json.dumps(resolved, sort_keys=True), sidecar)
+
+
+def state_of(obj, scene):
+    """The live state of `obj`, rebuilt from its stored parameters when needed (a file
+    just opened, an undo)."""
+    s = obj.seasynth
+    st = _states.get(obj.as_pointer())
+    if st is not None and st.json == s.params_json:
+        return st
+    if not s.params_json:
+        st = make_state(s, scene)
+    else:
+        resolved = json.loads(s.params_json)
+        p = engine.params_from_dict(resolved)
+        live, sidecar = _pin_foam(p, resolved, s.foam)
+        st = State(live, resolved, s.params_json, sidecar)
+    _remember(obj, st)
+    return st
+
+
+def _remember(obj, st):
+    key = obj.as_pointer()
+    if key not in _states:
+        alive = {o.as_pointer() for o in bpy.data.objects}
+        for k in [k for k in _states if k not in alive]:
+            del _states[k]
+    _states[key] = st
+
+
+def build_topology(me, nx, ny):
+    """A grid of nx × ny vertices, quads counter-clockwise seen from +z, smooth, UVs on
+    the texel centres (u = (i + ½)/nx, v = 1 − (j + ½)/ny: image row 0 is y = 0, the top
+    of the image, where Blender's v is 1), as the import script builds it."""
+    me.clear_geometry()
+    n, q = nx * ny, (nx - 1) * (ny - 1)
+    me.vertices.add(n)
+    me.loops.add(4 * q)
+    me.polygons.add(q)
+    j, i = np.mgrid[0 : ny - 1, 0 : nx - 1]
+    a = (j * nx + i).ravel()
+    quads = np.stack([a, a + 1, a + 1 + nx, a + nx], axis=1).ravel().astype(np.int32)
+    me.loops.foreach_set("vertex_index", quads)
+    me.polygons.foreach_set("loop_start", np.arange(0, 4 * q, 4, dtype=np.int32))
+    me.polygons.foreach_set("loop_total", np.full(q, 4, dtype=np.int32))
+    me.polygons.foreach_set("use_smooth", np.ones(q, dtype=bool))
+    me.update(calc_edges=True)
+    uv = me.uv_layers.new(name="UVMap")
+    u = ((quads % nx) + 0.5) / nx
+    v = 1.0 - ((quads // nx) + 0.5) / ny
+    uv.data.foreach_set("uv", np.stack([u, v], axis=1).astype(np.float32).ravel())
+    me["seasynth_grid"] = [nx, ny]
+
+
+def _ensure_topology(me, st):
+    if len(me.vertices) != st.nx * st.ny or list(me.get("seasynth_grid", [])) != [st.nx, st.ny]:
+        build_topology(me, st.nx, st.ny)
+
+
+def _point_attr(me, name, kind):
+    a = me.attributes.get(name)
+    if a is not None and (a.data_type != kind or a.domain != "POINT"):
+        me.attributes.remove(a)
+        a = None
+    if a is None:
+        a = me.attributes.new(name, kind, "POINT")
+    return a
+
+
+def _drop_attr(me, name):
+    a = me.attributes.get(name)
+    if a is not None:
+        me.attributes.remove(a)
+
+
+def positions(st, f):
+    """Vertex positions (n, 3) float32 of frame `f`."""
+    co = np.empty((st.nx * st.ny, 3), dtype=np.float32)
+    d = getattr(f, "displacement", None) if st.choppy else None
+    if d is not None:
+        d = d.reshape(-1, 3)
+        co[:, 0] = st.x + d[:, 0]
+        co[:, 1] = st.y + d[:, 1]
+        co[:, 2] = d[:, 2]
+    else:
+        co[:, 0] = st.x
+        co[:, 1] = st.y
+        co[:, 2] = f.height.reshape(-1)
+    return co
+
+
+def write_frame(obj, st, f):
+    """Frame `f` into the mesh: positions, and the foam and normal attributes."""
+    s, me = obj.seasynth, obj.data
+    _ensure_topology(me, st)
+    me.vertices.foreach_set("co", positions(st, f).ravel())
+    if s.foam and getattr(f, "foam", None) is not None:
+        _point_attr(me, FOAM_ATTR, "FLOAT").data.foreach_set(
+            "value", np.ascontiguousarray(f.foam, dtype=np.float32).ravel()
+        )
+    else:
+        _drop_attr(me, FOAM_ATTR)
+    if s.normals and getattr(f, "normal", None) is not None:
+        _point_attr(me, NORMAL_ATTR, "FLOAT_VECTOR").data.foreach_set(
+            "vector", np.ascontiguousarray(f.normal, dtype=np.float32).ravel()
+        )
+    else:
+        _drop_attr(me, NORMAL_ATTR)
+    me.update()
+
+
+def maps_for(s, st):
+    maps = []
+    if st.choppy:
+        maps.append("displacement")
+    if s.normals:
+        maps.append("normal")
+    if s.foam:
+        maps.append("foam")
+    return maps
+
+
+def show_frame(obj, scene, frame=None):
+    """The live sea at scene `frame` (default: the current frame)."""
+    st = state_of(obj, scene)
+    f = engine.frame(st.params, frame_time(scene, st.time0, frame), maps_for(obj.seasynth, st))
+    write_frame(obj, st, f)
+    return f
+
+
+def apply(obj, scene):
+    """Regenerates the sea from its panel. On a bad value raises SeaError and leaves the
+    sea on screen and its stored parameters as they were."""
+    s = obj.seasynth
+    st = make_state(s, scene)
+    f = engine.frame(st.params, frame_time(scene, st.time0), maps_for(s, st))
+    _remember(obj, st)
+    write_frame(obj, st, f)
+    with suspended():
+        s.params_json = st.json
+        s.sidecar_json = json.dumps(st.sidecar, sort_keys=True)
+        s.error = ""
+    material.update_for(obj)
+    return f
+
+
+def report_error(message):
+    """Blender's error report (status bar, Info editor) from a setting's update, where
+    no operator is running; headless, the report is printed."""
+    try:
+        bpy.ops.object.seasynth_report("EXEC_DEFAULT", message=message)
+    except RuntimeError:
+        pass  # the report itself: an operator that reports an error raises when called from Python
+
+
+def on_setting_changed(obj, context):
+    s = obj.seasynth
+    if _suspended or not s.is_sea:
+        return
+    scene = context.scene if context and context.scene else bpy.context.scene
+    try:
+        if s.mode == "BAKED":
+            from . import baked
+
+            baked.unlink(obj)
+        apply(obj, scene)
+    except engine.SeaError as e:
+        with suspended():
+            s.error = str(e)
+        report_error(str(e))
+
+
+def preset_values(name):
+    """The fields the panel shows, from a preset's resolved parameters."""
+    d = engine.resolved(engine.params({"preset": name}, {}))
+    spectrum = d.get("spectrum", {})
+    motion = d.get("motion", {})
+    wind = d.get("wind", {})
+    values = {
+        "method": d.get("method", "fft"),
+        "wind_speed": float(wind.get("speed_mps", 10.0)),
+        "wind_dir": float(wind.get("direction_deg", 0.0)),
+        "spectrum": spectrum.get("model", "jonswap"),
+        "spreading": spectrum.get("spreading", "hasselmann"),
+        "choppiness": float(motion.get("choppiness", 0.0)),
+        "seed": int(d.get("seed", 1)),
+        "loop_period": float(motion.get("loop_period_s") or 0.0),
+        "second_order": spectrum.get("nonlinear", "linear") == "second-order",
+        "time_offset": float(d.get("time_s", 0.0)),
+    }
+    return values
+
+
+def load_preset(s, name):
+    """Loads a preset's sea state into the panel, keeping Size, Extent and Samples At."""
+    values = preset_values(name)
+    with suspended():
+        for key, value in values.items():
+            try:
+                setattr(s, key, value)
+            except TypeError:
+                pass  # a value the panel has no item for (a fractal spectrum): keep ours
+
+
+def on_preset_changed(obj, context):
+    s = obj.seasynth
+    if _suspended or not s.is_sea:
+        return
+    try:
+        load_preset(s, s.preset)
+    except engine.SeaError as e:
+        s.error = str(e)
+        report_error(str(e))
+        return
+    on_setting_changed(obj, context)
+
+
+def seas(scene):
+    return [o for o in scene.objects if o.type == "MESH" and o.seasynth.is_sea]
+
+
+@bpy.app.handlers.persistent
+def on_frame_change(scene, depsgraph=None):
+    """frame_change_pre: the live seas follow the scene's frame before it is evaluated."""
+    for obj in seas(scene):
+        s = obj.seasynth
+        if s.mode != "LIVE" or not s.params_json:
+            continue
+        try:
+            show_frame(obj, scene)
+        except engine.SeaError as e:
+            if s.error != str(e):
+                with suspended():
+                    s.error = str(e)
+
+
+@bpy.app.handlers.persistent
+def on_load(_filepath=None, *args):
+    """A .blend just opened: its seas are rebuilt from their stored parameters."""
+    _states.clear()
+    for scene in bpy.data.scenes:
+        on_frame_change(scene)
+
+
+def clear():
+    _states.clear()
