@@ -6,6 +6,16 @@ whose text is seasynth's own one-line message (`--wind-speed (wind.speed_mps) mu
 > 0 and ≤ 100 m/s (got -3)`).
 """
 
+import os
+import sys
+
+# A wheel installed into the add-on itself (pip install --no-deps --target
+# seasynth_addon/_vendor seasynth-*.whl) is found first; otherwise Blender's sys.path
+# (PYTHONPATH, the user scripts' modules folder, the bundled Python's site-packages).
+_VENDOR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "_vendor")
+if os.path.isdir(_VENDOR) and _VENDOR not in sys.path:
+    sys.path.insert(0, _VENDOR)
+
 try:
     import seasynth as _ss
 except ImportError as e:  # the add-on still registers and says what is missing
@@ -42,6 +52,8 @@ def _wrap(call, *args, **kwargs):
         return call(*args, **kwargs)
     except ss.ParamError as e:
         raise SeaError(str(e)) from None
+    except MemoryError as e:  # seasynth.ResourceError: a sea too large for the memory
+        raise SeaError(str(e) or "not enough memory for this sea") from None
     except (ValueError, TypeError, OverflowError) as e:
         # A value Python could not hand to seasynth at all (a negative size, say).
         raise SeaError(str(e)) from None
@@ -51,11 +63,11 @@ def version():
     return getattr(_ss, "__version__", "?") if _ss is not None else ""
 
 
-def params(flags, keys):
-    """Parameters from CLI-style flags (`wind_speed=12`) and preset keys
-    (`{"motion.fps": 24.0}`): a `seasynth.Params`."""
-    ss = _module()
-    return _wrap(ss.Params, keys=keys, **flags)
+def params(preset, keys):
+    """Parameters as the command line makes them: `preset`, then `keys` in order, each a
+    flag's name (`wind_speed`: `--wind-speed`) or a preset key (`motion.fps`: `--set`),
+    the last one winning. A `seasynth.Params`."""
+    return _wrap(_module().Params, preset=preset, keys=keys)
 
 
 def params_from_dict(d):

@@ -48,27 +48,34 @@ def frame_time(scene, time0, frame=None):
     return time0 + (f - scene.frame_start) / scene_fps(scene)
 
 
+def typed(v):
+    """The number an artist typed into a float field: Blender stores it as a float32
+    (0.8 becomes 0.800000011920929), seasynth takes float64, so the shortest decimal that
+    is this float32 goes through (0.8)."""
+    return float(str(np.float32(v)))
+
+
 def panel_args(s, scene):
-    """The panel as seasynth flags and preset keys."""
-    flags = dict(
-        preset=s.preset,
+    """The panel as seasynth's preset and keys, in the order they apply: the panel's
+    flags, the scene's fps, then More Keys (so a key given there wins)."""
+    keys = dict(
         method=s.method,
         size=s.size,
-        extent=s.extent,
-        wind_speed=s.wind_speed,
-        wind_dir=s.wind_dir,
+        extent=typed(s.extent),
+        wind_speed=typed(s.wind_speed),
+        wind_dir=typed(s.wind_dir),
         spectrum=s.spectrum,
-        choppiness=s.choppiness,
+        choppiness=typed(s.choppiness),
         seed=s.seed,
-        time=s.time_offset,
+        time=typed(s.time_offset),
         sample_at=s.sample_at,
         nonlinear="second-order" if s.second_order else "linear",
     )
     if s.spectrum in PHYSICAL:
-        flags["spreading"] = s.spreading
+        keys["spreading"] = s.spreading
     if s.loop_period > 0.0:
-        flags["loop_period"] = s.loop_period
-    keys = {"motion.fps": scene_fps(scene)}
+        keys["loop_period"] = typed(s.loop_period)
+    keys["motion.fps"] = scene_fps(scene)
     text = s.extra_json.strip()
     if text:
         try:
@@ -78,14 +85,15 @@ def panel_args(s, scene):
         if not isinstance(extra, dict):
             raise engine.SeaError('More Keys: a JSON object of preset keys, e.g. {"spectrum.gamma": 2.0}')
         keys.update(extra)
-    return flags, keys
+    return s.preset, keys
 
 
 class State:
     """What the live frames need, derived once from the resolved parameters."""
 
-    def __init__(self, params, resolved, params_json, sidecar):
+    def __init__(self, params, resolved, params_json, sidecar, foam_threshold=None):
         self.params = params
+        self.foam_threshold = foam_threshold
         self.resolved = resolved
         self.json = params_json
         self.sidecar = sidecar
@@ -103,26 +111,41 @@ class State:
 
 
 def _pin_foam(p, resolved, wanted):
-    """`animate` resolves an "auto" foam threshold once, at its first frame (t = time);
-    the live frames use that same number, so frame F's foam is `animate`'s frame F's.
-    Returns the parameters for the live frames and the first frame's sidecar."""
+    """`animate` resolves an "auto" foam threshold once, at its first frame (t = time),
+    and uses it for every frame; the live frames do the same, so frame F's foam is
+    `animate`'s frame F's. Returns the parameters of the live frames, the first frame's
+    sidecar, and the threshold when the foam must be made here from the Jacobian (a
+    resolved threshold seasynth does not take as a setting, ≤ 0 on a folding sea)."""
     f0 = engine.frame(p, float(resolved.get("time_s", 0.0)), ("foam",) if wanted else ())
     sidecar = f0.sidecar()
-    auto = resolved.get("motion", {}).get("foam_threshold", "auto") == "auto"
-    if wanted and auto:
+    motion = resolved.get("motion", {})
+    auto = motion.get("foam_threshold", "auto") == "auto"
+    choppy = float(motion.get("choppiness", 0.0)) != 0.0
+    if wanted and auto and choppy:
         thr = (sidecar.get("foam") or {}).get("threshold_resolved")
         if thr is not None:
-            p = engine.replace(p, foam_threshold=float(thr))
-    return p, sidecar
+            try:
+                return engine.replace(p, foam_threshold=float(thr)), sidecar, None
+            except engine.SeaError:
+                return p, sidecar, float(thr)
+    return p, sidecar, None
+
+
+def foam_from_jacobian(j, threshold):
+    """seasynth's foam coverage round(65535·clamp((T − J)/T, 0, 1))/65535, float32."""
+    f = (threshold - j.astype(np.float64)) / threshold * 65535.0
+    v = np.clip(np.nan_to_num(f, nan=0.0), 0.0, 65535.0)
+    t = np.floor(v)
+    return ((t + (v - t >= 0.5)) / 65535.0).astype(np.float32)
 
 
 def make_state(s, scene):
     """Validates the panel through seasynth; raises SeaError with seasynth's message."""
-    flags, keys = panel_args(s, scene)
-    p = engine.params(flags, keys)
+    preset, keys = panel_args(s, scene)
+    p = engine.params(preset, keys)
     resolved = engine.resolved(p)
-    live, sidecar = _pin_foam(p, resolved, s.foam)
-    return State(live, resolved, json.dumps(resolved, sort_keys=True), sidecar)
+    live, sidecar, thr = _pin_foam(p, resolved, s.foam)
+    return State(live, resolved, json.dumps(resolved, sort_keys=True), sidecar, thr)
 
 
 def state_of(obj, scene):
@@ -137,8 +160,8 @@ def state_of(obj, scene):
     else:
         resolved = json.loads(s.params_json)
         p = engine.params_from_dict(resolved)
-        live, sidecar = _pin_foam(p, resolved, s.foam)
-        st = State(live, resolved, s.params_json, sidecar)
+        live, sidecar, thr = _pin_foam(p, resolved, s.foam)
+        st = State(live, resolved, s.params_json, sidecar, thr)
     _remember(obj, st)
     return st
 
@@ -240,14 +263,32 @@ def maps_for(s, st):
     if s.normals:
         maps.append("normal")
     if s.foam:
-        maps.append("foam")
+        maps.append("foam" if st.foam_threshold is None else "jacobian")
     return maps
+
+
+def frame_at(obj, st, t):
+    """seasynth's frame at time `t` for the object's settings."""
+    f = engine.frame(st.params, t, maps_for(obj.seasynth, st))
+    if obj.seasynth.foam and st.foam_threshold is not None:
+        return _WithFoam(f, foam_from_jacobian(f.jacobian, st.foam_threshold))
+    return f
+
+
+class _WithFoam:
+    """A frame whose foam was made here from its Jacobian."""
+
+    def __init__(self, f, foam):
+        self._f, self.foam = f, foam
+
+    def __getattr__(self, name):
+        return getattr(self._f, name)
 
 
 def show_frame(obj, scene, frame=None):
     """The live sea at scene `frame` (default: the current frame)."""
     st = state_of(obj, scene)
-    f = engine.frame(st.params, frame_time(scene, st.time0, frame), maps_for(obj.seasynth, st))
+    f = frame_at(obj, st, frame_time(scene, st.time0, frame))
     write_frame(obj, st, f)
     return f
 
@@ -257,7 +298,7 @@ def apply(obj, scene):
     sea on screen and its stored parameters as they were."""
     s = obj.seasynth
     st = make_state(s, scene)
-    f = engine.frame(st.params, frame_time(scene, st.time0), maps_for(s, st))
+    f = frame_at(obj, st, frame_time(scene, st.time0))
     _remember(obj, st)
     write_frame(obj, st, f)
     with suspended():
@@ -296,7 +337,7 @@ def on_setting_changed(obj, context):
 
 def preset_values(name):
     """The fields the panel shows, from a preset's resolved parameters."""
-    d = engine.resolved(engine.params({"preset": name}, {}))
+    d = engine.resolved(engine.params(name, {}))
     spectrum = d.get("spectrum", {})
     motion = d.get("motion", {})
     wind = d.get("wind", {})
