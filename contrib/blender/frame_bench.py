@@ -8,7 +8,9 @@ timed after two warm-up frames; SIZES (default 128,256,512) are vertices per sid
 seas: Pierson–Moskowitz at 15 m/s over 512 m, choppiness 1, foam and normals on, the
 scene time following the frame at 24 fps (the Ocean modifier's Time driven by frame/24).
 Each `scene.frame_set(f)` is timed whole (handlers, depsgraph, modifier), and the
-evaluated mesh is read after it. The Ocean modifier runs in two geometry modes:
+evaluated mesh is read after it. The seasynth sea is timed playing (frames in order: the
+add-on computes the next frame while Blender evaluates the current one) and scrubbing
+(the same frames shuffled: every frame computed when asked for). The Ocean modifier runs in two geometry modes:
 Displace on a grid of exactly N × N vertices with the simulation at resolution r, r² the
 nearest square ≥ N, and Generate at that r, (r² + 1)² vertices. Prints a Markdown table
 of medians and the ratios.
@@ -16,6 +18,7 @@ of medians and the ratios.
 
 import math
 import os
+import random
 import statistics
 import sys
 import time
@@ -37,18 +40,35 @@ def clear():
         bpy.data.meshes.remove(m)
 
 
-def time_frames(obj, frames):
+def time_frames(obj, frames, order="play"):
+    """Median time of `scene.frame_set(f)` and the evaluated mesh, after two warm-up
+    frames: frames 3 … frames + 2 in order ("play") or shuffled ("scrub")."""
     scene = bpy.context.scene
+    todo = list(range(3, frames + 3))
+    if order == "scrub":
+        random.Random(1).shuffle(todo)
     times = []
-    for f in range(1, frames + 3):
+    for k, f in enumerate([1, 2] + todo):
         t0 = time.perf_counter()
         scene.frame_set(f)
         dg = bpy.context.evaluated_depsgraph_get()
         n = len(obj.evaluated_get(dg).data.vertices)
         dt = time.perf_counter() - t0
-        if f > 2:
+        if k >= 2:
             times.append(dt)
     return statistics.median(times), n
+
+
+def moves(obj):
+    """The evaluated sea changes from frame to frame (guards against timing a still sea)."""
+    scene = bpy.context.scene
+    zs = []
+    for f in (1, 2):
+        scene.frame_set(f)
+        dg = bpy.context.evaluated_depsgraph_get()
+        me = obj.evaluated_get(dg).data
+        zs.append([me.vertices[k].co.z for k in range(0, len(me.vertices), 997)])
+    assert zs[0] != zs[1], f"{obj.name} does not move"
 
 
 def seasynth_sea(n):
@@ -94,28 +114,40 @@ def main():
     seasynth_addon.register()
     scene = bpy.context.scene
     scene.render.fps, scene.render.fps_base = FPS, 1.0
-    scene.frame_start, scene.frame_end = 1, frames + 2
+    scene.frame_start, scene.frame_end = 1, frames + 3
     rows = []
     for n in sizes:
         clear()
-        ss_t, ss_n = time_frames(seasynth_sea(n), frames)
+        obj = seasynth_sea(n)
+        moves(obj)
+        play_t, ss_n = time_frames(obj, frames, "play")
+        scrub_t, _ = time_frames(obj, frames, "scrub")
         clear()
         obj, r = ocean(n, "DISPLACE")
+        moves(obj)
         od_t, od_n = time_frames(obj, frames)
         clear()
         obj, _ = ocean(n, "GENERATE")
         og_t, og_n = time_frames(obj, frames)
-        rows.append((n, ss_n, ss_t, r, od_n, od_t, og_n, og_t))
-        print(f"{n}: seasynth {ss_t * 1e3:.1f} ms, Ocean displace {od_t * 1e3:.1f} ms, generate {og_t * 1e3:.1f} ms", flush=True)
+        rows.append((n, ss_n, play_t, scrub_t, r, od_n, od_t, og_n, og_t))
+        print(
+            f"{n}: seasynth play {play_t * 1e3:.1f} ms, scrub {scrub_t * 1e3:.1f} ms, "
+            f"Ocean displace {od_t * 1e3:.1f} ms, generate {og_t * 1e3:.1f} ms",
+            flush=True,
+        )
     print()
     print(f"frame change, median of {frames} frames, Blender {bpy.app.version_string}, {os.cpu_count()} cores")
     print()
-    print("| N | seasynth sea (N² vertices) | Ocean, Displace on N² vertices (r, r²) | ratio | Ocean, Generate ((r²+1)² vertices) | ratio |")
-    print("|---|---|---|---|---|---|")
-    for n, ss_n, ss_t, r, od_n, od_t, og_n, og_t in rows:
+    print(
+        "| N | seasynth sea, playing (N² vertices) | seasynth sea, scrubbing | Ocean, Displace on N² vertices (r, simulation r²) "
+        "| Ocean, Generate at r | Ocean Displace ÷ seasynth (play, scrub) | Ocean Generate ÷ seasynth (play, scrub) |"
+    )
+    print("|---|---|---|---|---|---|---|")
+    for n, ss_n, play_t, scrub_t, r, od_n, od_t, og_n, og_t in rows:
         print(
-            f"| {n} | {ss_t * 1e3:.1f} ms ({ss_n}) | {od_t * 1e3:.1f} ms ({od_n}; r = {r}, {r * r}²) | "
-            f"{od_t / ss_t:.1f}× | {og_t * 1e3:.1f} ms ({og_n}) | {og_t / ss_t:.1f}× |"
+            f"| {n} | {play_t * 1e3:.1f} ms ({ss_n}) | {scrub_t * 1e3:.1f} ms | {od_t * 1e3:.1f} ms ({od_n}; r = {r}, {r * r}²) "
+            f"| {og_t * 1e3:.1f} ms ({og_n} vertices) | {od_t / play_t:.1f}×, {od_t / scrub_t:.1f}× "
+            f"| {og_t / play_t:.1f}×, {og_t / scrub_t:.1f}× |"
         )
     seasynth_addon.unregister()
 

@@ -11,6 +11,7 @@ x = (i [+ ½])·Lx/nx, y = (j [+ ½])·Ly/ny: the displaced vertex of the sample
 """
 
 import json
+import threading
 from contextlib import contextmanager
 
 import bpy
@@ -285,11 +286,61 @@ class _WithFoam:
         return getattr(self._f, name)
 
 
-def show_frame(obj, scene, frame=None):
-    """The live sea at scene `frame` (default: the current frame)."""
+class _Ahead:
+    """The next frame of a playing sea, computed on a worker thread while Blender
+    evaluates and draws the current one (the module releases Python's lock while it
+    computes). Only a frame asked for with the same state, time and maps is taken."""
+
+    def __init__(self, obj, st, t):
+        self.key = (id(st), t, tuple(maps_for(obj.seasynth, st)))
+        self.frame = self.error = None
+        self._thread = threading.Thread(target=self._run, args=(obj.seasynth.foam, st, t), daemon=True)
+        self._thread.start()
+
+    def _run(self, foam, st, t):
+        try:
+            f = engine.frame(st.params, t, self.key[2])
+            if foam and st.foam_threshold is not None:
+                f = _WithFoam(f, foam_from_jacobian(f.jacobian, st.foam_threshold))
+            self.frame = f
+        except engine.SeaError as e:
+            self.error = e
+
+    def busy(self):
+        return self._thread.is_alive()
+
+    def take(self, key):
+        if key != self.key:
+            return None
+        self._thread.join()
+        return self.frame
+
+
+_ahead = {}  # object pointer -> _Ahead
+_stale = []  # frames computed ahead that were not wanted, still running
+
+
+def show_frame(obj, scene, frame=None, ahead=False):
+    """The live sea at scene `frame` (default: the current frame). With `ahead` (frame
+    changes), the following frame starts computing once this one is written."""
     st = state_of(obj, scene)
-    f = frame_at(obj, st, frame_time(scene, st.time0, frame))
+    t = frame_time(scene, st.time0, frame)
+    key = obj.as_pointer()
+    pending = _ahead.pop(key, None)
+    f = None
+    if pending is not None:
+        f = pending.take((id(st), t, tuple(maps_for(obj.seasynth, st))))
+        if f is None and pending.busy():
+            _stale.append(pending)
+    if f is None:
+        f = frame_at(obj, st, t)
     write_frame(obj, st, f)
+    _stale[:] = [a for a in _stale if a.busy()]
+    if ahead and not _stale:
+        step = scene.frame_step if scene.frame_step > 0 else 1
+        nxt = (scene.frame_current if frame is None else frame) + step
+        if nxt <= scene.frame_end:
+            _ahead[key] = _Ahead(obj, st, frame_time(scene, st.time0, nxt))
     return f
 
 
@@ -392,7 +443,7 @@ def on_frame_change(scene, depsgraph=None):
         if s.mode != "LIVE" or not s.params_json:
             continue
         try:
-            show_frame(obj, scene)
+            show_frame(obj, scene, ahead=True)
         except engine.SeaError as e:
             if s.error != str(e):
                 with suspended():
@@ -409,3 +460,4 @@ def on_load(_filepath=None, *args):
 
 def clear():
     _states.clear()
+    _ahead.clear()
