@@ -50,8 +50,10 @@ CHOPPY_PANEL = {"wind_dir": 30.0, "choppiness": 1.0, "seed": 7, "spectrum": "jon
 CHOPPY_CLI = ["--preset", "moderate", "--size", str(N), "--extent", str(L), "--wind-speed", "12",
               "--wind-dir", "30", "--choppiness", "1", "--seed", "7", "--spectrum", "jonswap",
               "--spreading", "hasselmann", "--loop-period", "20"]
-# Heights only, second order, samples at texel centres: preset mastin-1987 (15 m/s).
-SECOND_PANEL = {"method": "fft", "choppiness": 0.0, "second_order": True, "sample_at": "centers"}
+# Heights only, second order, samples at texel centres, a seamless tile (a closing column
+# and row of vertices): preset mastin-1987 (15 m/s).
+SECOND_PANEL = {"method": "fft", "choppiness": 0.0, "second_order": True, "sample_at": "centers",
+                "seamless": True}
 SECOND_CLI = ["--preset", "mastin-1987", "--size", str(N), "--extent", str(L), "--method", "fft",
               "--choppiness", "0", "--nonlinear", "second-order", "--sample-at", "centers"]
 
@@ -164,6 +166,9 @@ out["second_error"] = second.seasynth.error
 out["second_params"] = json.loads(second.seasynth.params_json)
 for f in cfg["frames"]:
     dump(second, "second", f)
+second.seasynth.bake_dir = os.path.join(tmp, "bake2")
+bpy.ops.object.seasynth_bake()
+dump(second, "second_baked", cfg["frames"][1])
 
 # The saved file: the same settings and sea.
 bpy.ops.wm.open_mainfile(filepath=os.path.join(tmp, "sea.blend"))
@@ -383,12 +388,21 @@ def test_blender_addon_makes_the_live_sea_seasynth_animate_makes(tmp_path):
 
     second = out["second_params"]
     for f in frames:
+        co = frame("second", f)["co"].reshape(N + 1, N + 1, 3)
+        # The closing column and row: the first ones, one tile further.
+        assert np.array_equal(co[:, N, 1:], co[:, 0, 1:]) and np.array_equal(co[N, :, [0, 2]], co[0, :, [0, 2]])
+        assert np.abs(co[:, N, 0] - co[:, 0, 0] - L).max() <= POSITION_TOLERANCE_M
+        assert np.abs(co[N, :, 1] - co[0, :, 1] - L).max() <= POSITION_TOLERANCE_M
+        co = co[:N, :N].reshape(-1, 3)
         ex = read_exr(tmp_path / "cli2" / f"frame_{f:05d}.disp.exr")
         x, y = grid_xy(second)
         want = np.stack([x, y, ex["B"].ravel()], axis=1).astype(np.float32)
-        check_positions(frame("second", f)["co"], want, f"second order, scene frame {f} vs animate's file {f}")
+        check_positions(co, want, f"second order, scene frame {f} vs animate's file {f}")
         g = seasynth.generate(seasynth.Params.from_dict(second), time=second["time_s"] + (f - START) / FPS)
-        assert np.array_equal(frame("second", f)["co"][:, 2], g.height.ravel()), f"second order, frame {f}"
+        assert np.array_equal(co[:, 2], g.height.ravel()), f"second order, frame {f}"
+    # Baked, the closing vertices read the first texels again (the textures repeat).
+    d = np.abs(frame("second_baked", START + 1)["co"].astype(np.float64) - frame("second", START + 1)["co"]).max()
+    assert d <= BAKED_TOLERANCE_M, f"the baked seamless sea is {d} m off the live one"
 
     # Bad values: seasynth's own message, reported; the previous sea stays and animates.
     wind = cli_message(exe, tmp_path, "generate", *CHOPPY_CLI, "--wind-speed", "-3", "-o", "x.png")

@@ -65,8 +65,10 @@ def link(obj, folder, scene):
         raise ValueError(f"{folder}: the sequence has no disp.exr files")
     st = sea.state_of(obj, scene)
     me = obj.data
-    sea._ensure_topology(me, st)
-    flat = np.stack([st.x, st.y, np.zeros_like(st.x)], axis=1).astype(np.float32)
+    seamless = obj.seasynth.seamless
+    sea.ensure_topology(me, st, seamless)
+    x, y = st.base(seamless)
+    flat = np.stack([x, y, np.zeros_like(x)], axis=1).astype(np.float32)
     me.vertices.foreach_set("co", flat.ravel())
     sea._drop_attr(me, sea.FOAM_ATTR)
     sea._drop_attr(me, sea.NORMAL_ATTR)
@@ -81,7 +83,8 @@ def link(obj, folder, scene):
     tex.use_mipmap = False
     tex.use_interpolation = True
     tex.filter_size = 1.0
-    tex.extension = "EXTEND"
+    # Repeat: the closing vertices of a seamless tile read the first texels again.
+    tex.extension = "REPEAT"
     _set_user(tex.image_user, seq)
     mod = obj.modifiers.get(MODIFIER) or obj.modifiers.new(MODIFIER, "DISPLACE")
     # First in the stack, so the artist's own modifiers see the displaced sea.

@@ -79,7 +79,7 @@ def build(name):
     nm = _node(nodes, "ShaderNodeTexImage", "Normal Sequence", (-500, -850))
     for t in (ft, nm):
         t.interpolation = "Linear"
-        t.extension = "EXTEND"
+        t.extension = "REPEAT"
     return mat
 
 

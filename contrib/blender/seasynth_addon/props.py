@@ -163,6 +163,12 @@ class SeasynthSea(bpy.types.PropertyGroup):
         default="",
         update=_changed,
     )
+    seamless: BoolProperty(
+        name="Seamless Edges",
+        description="Add a closing column and row of vertices (the first ones, one tile further) so that copies of the sea side by side (an Array modifier with a constant offset of the extent) meet without a gap",
+        default=False,
+        update=_changed,
+    )
     foam: BoolProperty(
         name="Foam",
         description="Compute seasynth's foam coverage each frame and mix it into the material",

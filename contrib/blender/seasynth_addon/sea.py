@@ -105,10 +105,30 @@ class State:
         self.time0 = float(resolved.get("time_s", 0.0))
         motion = resolved.get("motion", {})
         self.choppy = float(motion.get("choppiness", 0.0)) != 0.0
-        i = (np.arange(self.nx, dtype=np.float64) + self.offset) * (self.lx / self.nx)
-        j = (np.arange(self.ny, dtype=np.float64) + self.offset) * (self.ly / self.ny)
-        self.x = np.tile(i, self.ny)
-        self.y = np.repeat(j, self.nx)
+        self._base = {}
+
+    def dims(self, seamless):
+        """Vertices along x and y: one per sample, and with `seamless` a closing column
+        and row (the first ones again, one tile further)."""
+        return (self.nx + 1, self.ny + 1) if seamless else (self.nx, self.ny)
+
+    def base(self, seamless):
+        """x and y of every vertex of the flat grid, float64, row by row."""
+        if seamless not in self._base:
+            mx, my = self.dims(seamless)
+            i = (np.arange(mx, dtype=np.float64) + self.offset) * (self.lx / self.nx)
+            j = (np.arange(my, dtype=np.float64) + self.offset) * (self.ly / self.ny)
+            self._base[seamless] = (np.tile(i, my), np.repeat(j, mx))
+        return self._base[seamless]
+
+
+def wrapped(a, seamless):
+    """A (ny, nx, …) map with its first column and row repeated after the last, for the
+    closing vertices of a seamless tile."""
+    if not seamless:
+        return a
+    a = np.concatenate([a, a[:, :1]], axis=1)
+    return np.concatenate([a, a[:1]], axis=0)
 
 
 def _pin_foam(p, resolved, wanted):
@@ -176,33 +196,35 @@ def _remember(obj, st):
     _states[key] = st
 
 
-def build_topology(me, nx, ny):
-    """A grid of nx × ny vertices, quads counter-clockwise seen from +z, smooth, UVs on
-    the texel centres (u = (i + ½)/nx, v = 1 − (j + ½)/ny: image row 0 is y = 0, the top
-    of the image, where Blender's v is 1), as the import script builds it."""
+def build_topology(me, mx, my, nx, ny):
+    """A grid of mx × my vertices (nx × ny samples), quads counter-clockwise seen from
+    +z, smooth, UVs on the texel centres (u = (i + ½)/nx, v = 1 − (j + ½)/ny: image row 0
+    is y = 0, the top of the image, where Blender's v is 1; the closing vertices of a
+    seamless tile reach past 1 and the textures repeat), as the import script builds it."""
     me.clear_geometry()
-    n, q = nx * ny, (nx - 1) * (ny - 1)
+    n, q = mx * my, (mx - 1) * (my - 1)
     me.vertices.add(n)
     me.loops.add(4 * q)
     me.polygons.add(q)
-    j, i = np.mgrid[0 : ny - 1, 0 : nx - 1]
-    a = (j * nx + i).ravel()
-    quads = np.stack([a, a + 1, a + 1 + nx, a + nx], axis=1).ravel().astype(np.int32)
+    j, i = np.mgrid[0 : my - 1, 0 : mx - 1]
+    a = (j * mx + i).ravel()
+    quads = np.stack([a, a + 1, a + 1 + mx, a + mx], axis=1).ravel().astype(np.int32)
     me.loops.foreach_set("vertex_index", quads)
     me.polygons.foreach_set("loop_start", np.arange(0, 4 * q, 4, dtype=np.int32))
     me.polygons.foreach_set("loop_total", np.full(q, 4, dtype=np.int32))
     me.polygons.foreach_set("use_smooth", np.ones(q, dtype=bool))
     me.update(calc_edges=True)
     uv = me.uv_layers.new(name="UVMap")
-    u = ((quads % nx) + 0.5) / nx
-    v = 1.0 - ((quads // nx) + 0.5) / ny
+    u = ((quads % mx) + 0.5) / nx
+    v = 1.0 - ((quads // mx) + 0.5) / ny
     uv.data.foreach_set("uv", np.stack([u, v], axis=1).astype(np.float32).ravel())
-    me["seasynth_grid"] = [nx, ny]
+    me["seasynth_grid"] = [mx, my, nx, ny]
 
 
-def _ensure_topology(me, st):
-    if len(me.vertices) != st.nx * st.ny or list(me.get("seasynth_grid", [])) != [st.nx, st.ny]:
-        build_topology(me, st.nx, st.ny)
+def ensure_topology(me, st, seamless):
+    mx, my = st.dims(seamless)
+    if len(me.vertices) != mx * my or list(me.get("seasynth_grid", [])) != [mx, my, st.nx, st.ny]:
+        build_topology(me, mx, my, st.nx, st.ny)
 
 
 def _point_attr(me, name, kind):
@@ -221,36 +243,37 @@ def _drop_attr(me, name):
         me.attributes.remove(a)
 
 
-def positions(st, f):
+def positions(st, f, seamless=False):
     """Vertex positions (n, 3) float32 of frame `f`."""
-    co = np.empty((st.nx * st.ny, 3), dtype=np.float32)
+    x, y = st.base(seamless)
+    co = np.empty((x.size, 3), dtype=np.float32)
     d = getattr(f, "displacement", None) if st.choppy else None
     if d is not None:
-        d = d.reshape(-1, 3)
-        co[:, 0] = st.x + d[:, 0]
-        co[:, 1] = st.y + d[:, 1]
+        d = wrapped(d, seamless).reshape(-1, 3)
+        co[:, 0] = x + d[:, 0]
+        co[:, 1] = y + d[:, 1]
         co[:, 2] = d[:, 2]
     else:
-        co[:, 0] = st.x
-        co[:, 1] = st.y
-        co[:, 2] = f.height.reshape(-1)
+        co[:, 0] = x
+        co[:, 1] = y
+        co[:, 2] = wrapped(f.height, seamless).reshape(-1)
     return co
 
 
 def write_frame(obj, st, f):
     """Frame `f` into the mesh: positions, and the foam and normal attributes."""
     s, me = obj.seasynth, obj.data
-    _ensure_topology(me, st)
-    me.vertices.foreach_set("co", positions(st, f).ravel())
+    ensure_topology(me, st, s.seamless)
+    me.vertices.foreach_set("co", positions(st, f, s.seamless).ravel())
     if s.foam and getattr(f, "foam", None) is not None:
         _point_attr(me, FOAM_ATTR, "FLOAT").data.foreach_set(
-            "value", np.ascontiguousarray(f.foam, dtype=np.float32).ravel()
+            "value", np.ascontiguousarray(wrapped(f.foam, s.seamless), dtype=np.float32).ravel()
         )
     else:
         _drop_attr(me, FOAM_ATTR)
     if s.normals and getattr(f, "normal", None) is not None:
         _point_attr(me, NORMAL_ATTR, "FLOAT_VECTOR").data.foreach_set(
-            "vector", np.ascontiguousarray(f.normal, dtype=np.float32).ravel()
+            "vector", np.ascontiguousarray(wrapped(f.normal, s.seamless), dtype=np.float32).ravel()
         )
     else:
         _drop_attr(me, NORMAL_ATTR)

@@ -63,6 +63,7 @@ class VIEW3D_PT_seasynth(bpy.types.Panel):
         sub.active = s.method == "fft" and s.spectrum in PHYSICAL and s.choppiness == 0.0
         sub.prop(s, "second_order")
         col.prop(s, "sample_at")
+        col.prop(s, "seamless")
         col.prop(s, "time_offset")
         col.prop(s, "extra_json")
         col.separator()
