@@ -4,8 +4,8 @@
 
 DIR holds the seasynth module (docs/blender.md, Install). The sea: Add → seasynth sea with
 the `moderate` preset (JONSWAP, 10 m/s, choppiness 0.8) at SIZE² vertices (default 512)
-over 256 m, foam and normals on, the add-on's water material, under a sun and a sky, seen
-from 9 m above the water; scene frame FRAME (default 1) at 24 fps. 960 × 540 pixels.
+over 256 m, foam and normals on, the add-on's water material, Seamless Edges on and the tile
+repeated 3 × 3 by Array modifiers, under a sun and a sky, seen from 10 m above the water; scene frame FRAME (default 1) at 24 fps. 960 × 540 pixels.
 """
 
 import math
@@ -31,15 +31,23 @@ scene.frame_start, scene.frame_end = 1, 48
 scene.frame_set(frame)
 bpy.ops.mesh.seasynth_sea_add(preset="moderate", size=size, extent=256.0)
 sea = bpy.context.active_object
-sea.seasynth.foam_amount = 1.5
+sea.seasynth.foam_amount = 3.0
+sea.seasynth.seamless = True
+# Three tiles by three: the seamless tile repeats without a seam.
+for axis, name in ((0, "x"), (1, "y")):
+    arr = sea.modifiers.new("tiles " + name, "ARRAY")
+    arr.count = 3
+    arr.use_relative_offset = False
+    arr.use_constant_offset = True
+    arr.constant_offset_displace = (256.0, 0.0, 0.0) if axis == 0 else (0.0, 256.0, 0.0)
 
 cam_data = bpy.data.cameras.new("camera")
 cam_data.lens = 28
 cam_data.clip_end = 2000
 cam = bpy.data.objects.new("camera", cam_data)
 scene.collection.objects.link(cam)
-cam.location = (30.0, 40.0, 9.0)
-cam.rotation_euler = (math.radians(78), 0.0, math.radians(-125))
+cam.location = (200.0, 180.0, 10.0)
+cam.rotation_euler = (math.radians(74), 0.0, math.radians(-40))
 scene.camera = cam
 
 sun_data = bpy.data.lights.new("sun", "SUN")
