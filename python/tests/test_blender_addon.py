@@ -208,15 +208,19 @@ def seasynth_bin():
     skip("no seasynth binary (set SEASYNTH_BIN, or run cargo build --release): the Blender add-on test is skipped")
 
 
-def module_folder(tmp):
-    """A folder to put on Blender's PYTHONPATH that holds the seasynth package."""
-    env = os.environ.get("SEASYNTH_BLENDER_PYTHONPATH")
-    if env:
-        return env
+def the_module():
     try:
         import seasynth
     except ImportError as e:
         skip(f"the seasynth module is not built ({e}): the Blender add-on test is skipped")
+    return seasynth
+
+
+def module_folder(tmp, seasynth):
+    """A folder to put on Blender's PYTHONPATH that holds the seasynth package."""
+    env = os.environ.get("SEASYNTH_BLENDER_PYTHONPATH")
+    if env:
+        return env
     folder = tmp / "pylib"
     shutil.copytree(Path(seasynth.__file__).parent, folder / "seasynth",
                     ignore=shutil.ignore_patterns("__pycache__"))
@@ -314,7 +318,8 @@ def displaced(params, disp):
 def test_blender_addon_makes_the_live_sea_seasynth_animate_makes(tmp_path):
     blender = blender_path()
     exe = seasynth_bin()
-    pylib = module_folder(tmp_path)
+    seasynth = the_module()
+    pylib = module_folder(tmp_path, seasynth)
     env = dict(os.environ)
     env["PYTHONPATH"] = pylib + os.pathsep + env.get("PYTHONPATH", "")
     env["BLENDER_USER_SCRIPTS"] = str(tmp_path / "scripts")  # the zip installs here, not in ~
@@ -322,7 +327,6 @@ def test_blender_addon_makes_the_live_sea_seasynth_animate_makes(tmp_path):
                         "import seasynth; print('seasynth', seasynth.__version__, 'ok')")
     if " ok" not in probe.stdout:
         skip(f"Blender's Python does not import the seasynth module from {pylib}: {probe.stdout[-400:]}{probe.stderr[-400:]}")
-    import seasynth
 
     frames = [START, START + 1, END]
     cfg = {"tmp": str(tmp_path), "zip": str(addon_zip(tmp_path)), "fps": FPS, "start": START, "end": END,
