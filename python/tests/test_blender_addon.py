@@ -46,10 +46,10 @@ L = 64.0
 # The choppy sea: Add → seasynth sea (preset moderate, 32 vertices over 64 m, 12 m/s),
 # then these panel values.
 CHOPPY_PANEL = {"wind_dir": 30.0, "choppiness": 1.0, "seed": 7, "spectrum": "jonswap",
-                "spreading": "hasselmann", "loop_period": 20.0}
+                "spreading": "hasselmann", "loop_period": 20.0, "time_offset": 2.5}
 CHOPPY_CLI = ["--preset", "moderate", "--size", str(N), "--extent", str(L), "--wind-speed", "12",
               "--wind-dir", "30", "--choppiness", "1", "--seed", "7", "--spectrum", "jonswap",
-              "--spreading", "hasselmann", "--loop-period", "20"]
+              "--spreading", "hasselmann", "--loop-period", "20", "--time", "2.5"]
 # Heights only, second order, samples at texel centres, a seamless tile (a closing column
 # and row of vertices): preset mastin-1987 (15 m/s).
 SECOND_PANEL = {"method": "fft", "choppiness": 0.0, "second_order": True, "sample_at": "centers",
@@ -121,6 +121,15 @@ set_panel(sea, cfg["choppy_panel"])
 out["choppy_name"] = sea.name
 out["choppy_params"] = json.loads(sea.seasynth.params_json)
 out["choppy_sidecar"] = json.loads(sea.seasynth.sidecar_json)
+
+
+def links(obj):
+    """(from node, to node, to socket) of the sea's material."""
+    nt = obj.active_material.node_tree
+    return sorted([l.from_node.name, l.to_node.name, l.to_socket.name] for l in nt.links)
+
+
+out["live_links"] = links(sea)
 for f in cfg["frames"]:
     dump(sea, "live", f)
 
@@ -151,6 +160,9 @@ sea.seasynth.bake_compression = "none"
 bpy.ops.object.seasynth_bake()
 out["baked_mode"] = sea.seasynth.mode
 out["baked_modifiers"] = [m.type for m in sea.modifiers]
+out["baked_links"] = links(sea)
+out["baked_images"] = {n: sea.active_material.node_tree.nodes[n].image.filepath
+                       for n in ("Foam Sequence", "Normal Sequence")}
 for f in cfg["frames"]:
     dump(sea, "baked", f)
 bpy.ops.object.seasynth_live()
@@ -437,6 +449,17 @@ def test_blender_addon_makes_the_live_sea_seasynth_animate_makes(tmp_path):
         d = np.abs(frame("baked", f)["co"].astype(np.float64) - frame("live", f)["co"]).max()
         print(f"baked vs live, scene frame {f}: max {d:.2e} m")
         assert d <= BAKED_TOLERANCE_M, f"scene frame {f}: the baked sea is {d} m off the live one"
+    # Foam and normals reach the material: attributes live, the sequences baked.
+    foam_live = ["Foam Attribute", "Foam Amount", "Value"]
+    normal_live = ["Normal Attribute", "Normal to World", "Vector"]
+    to_bsdf = ["Normal to World", "Water", "Normal"]
+    for link in (foam_live, normal_live, to_bsdf, ["Foam Amount", "Foam Mix", "Fac"]):
+        assert link in out["live_links"], f"live material lacks {link}"
+    for link in (["Foam Sequence", "Foam Amount", "Value"], ["Normal Sequence", "Normal to World", "Vector"], to_bsdf):
+        assert link in out["baked_links"], f"baked material lacks {link}"
+    assert foam_live not in out["baked_links"] and normal_live not in out["baked_links"]
+    assert out["baked_images"]["Foam Sequence"].endswith(f"frame_{START:05d}.foam.exr")
+    assert out["baked_images"]["Normal Sequence"].endswith(f"frame_{START:05d}.normal.exr")
     assert out["live_mode"] == "LIVE" and out["live_modifiers"] == []
     assert np.array_equal(frame("live_again", START + 1)["co"], frame("live", START + 1)["co"])
     assert np.array_equal(frame("reopened", START + 1)["co"], frame("live", START + 1)["co"])
