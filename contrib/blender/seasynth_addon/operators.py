@@ -165,13 +165,28 @@ class OBJECT_OT_seasynth_live(bpy.types.Operator):
 
 
 class OBJECT_OT_seasynth_report(bpy.types.Operator):
-    """Show a seasynth message as Blender's error report"""
+    """Show a seasynth message as Blender's error report. A setting's update runs no
+    operator, and the reports of an operator called from Python only reach the caller;
+    invoked, this one reports from its modal step, whose reports the window manager owns
+    (the status bar, the Info editor). Executed (headless), it reports to the caller."""
 
     bl_idname = "object.seasynth_report"
     bl_label = "seasynth Error"
     bl_options = {"INTERNAL"}
 
     message: StringProperty()
+
+    def invoke(self, context, event):
+        wm = context.window_manager
+        # A timer event runs the modal step at once, without waiting for input.
+        self._timer = wm.event_timer_add(0.01, window=context.window)
+        wm.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        context.window_manager.event_timer_remove(self._timer)
+        self.report({"ERROR"}, self.message)
+        return {"CANCELLED"}
 
     def execute(self, context):
         self.report({"ERROR"}, self.message)

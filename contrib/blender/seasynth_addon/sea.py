@@ -386,8 +386,10 @@ def apply(obj, scene):
 def report_error(message):
     """Blender's error report (status bar, Info editor) from a setting's update, where
     no operator is running; headless, the report is printed."""
+    window = getattr(bpy.context, "window", None)
+    mode = "INVOKE_DEFAULT" if window is not None and not bpy.app.background else "EXEC_DEFAULT"
     try:
-        bpy.ops.object.seasynth_report("EXEC_DEFAULT", message=message)
+        bpy.ops.object.seasynth_report(mode, message=message)
     except RuntimeError:
         pass  # the report itself: an operator that reports an error raises when called from Python
 
