@@ -189,6 +189,11 @@ out["reopened_params"] = json.loads(sea.seasynth.params_json)
 out["reopened_panel"] = {k: getattr(sea.seasynth, k) for k in cfg["choppy_panel"]}
 dump(sea, "reopened", cfg["frames"][1])
 
+# A new frame rate: the live sea and its stored parameters follow it.
+bpy.context.scene.render.fps = 30
+dump(sea, "fps30", cfg["frames"][1])
+out["fps30_params"] = json.loads(sea.seasynth.params_json)
+
 with open(os.path.join(tmp, "out.json"), "w") as fh:
     json.dump(out, fh)
 '''
@@ -463,3 +468,7 @@ def test_blender_addon_makes_the_live_sea_seasynth_animate_makes(tmp_path):
     assert out["live_mode"] == "LIVE" and out["live_modifiers"] == []
     assert np.array_equal(frame("live_again", START + 1)["co"], frame("live", START + 1)["co"])
     assert np.array_equal(frame("reopened", START + 1)["co"], frame("live", START + 1)["co"])
+    p30 = out["fps30_params"]
+    assert p30["motion"]["fps"] == 30.0 and dict(p30, motion=None) == dict(params, motion=None)
+    g = seasynth.generate(seasynth.Params.from_dict(p30), time=p30["time_s"] + 1 / 30.0, maps=("displacement",))
+    check_positions(frame("fps30", START + 1)["co"], displaced(p30, g.displacement), "scene frame 4 at 30 fps")

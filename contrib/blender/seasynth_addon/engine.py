@@ -74,8 +74,9 @@ def params_from_dict(d):
     return _wrap(_module().Params.from_dict, d)
 
 
-def replace(p, **flags):
-    return _wrap(p.replace, **flags)
+def replace(p, keys=None, **flags):
+    """`p` with more keys applied (the same rules as `params`)."""
+    return _wrap(p.replace, keys, **flags)
 
 
 def resolved(p):

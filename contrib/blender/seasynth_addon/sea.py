@@ -6,7 +6,8 @@ time_offset --fps fps`, and file number F of a sequence baked with `--start-fram
 frame_start` (the add-on's bake). The mesh has one vertex per sample, row by row
 (vertex j·nx + i is sample (i, j)), at (x + λDx, y + λDy, h) in object space, meters,
 x = (i [+ ½])·Lx/nx, y = (j [+ ½])·Ly/ny: the displaced vertex of the sample, exactly as
-`animate --format disp.exr --up z` describes it. Everything moves through numpy and
+`animate --format disp.exr --up z` describes it; with Seamless Edges a closing column
+and row follow (the first ones, one tile further). Everything moves through numpy and
 `foreach_set`; no Python loop runs over vertices.
 """
 
@@ -104,6 +105,7 @@ class State:
         self.offset = 0.5 if grid.get("sample_at", "corners") == "centers" else 0.0
         self.time0 = float(resolved.get("time_s", 0.0))
         motion = resolved.get("motion", {})
+        self.fps = float(motion.get("fps", 30.0))
         self.choppy = float(motion.get("choppiness", 0.0)) != 0.0
         self._base = {}
 
@@ -173,16 +175,25 @@ def state_of(obj, scene):
     """The live state of `obj`, rebuilt from its stored parameters when needed (a file
     just opened, an undo)."""
     s = obj.seasynth
+    fps = scene_fps(scene)
     st = _states.get(obj.as_pointer())
-    if st is not None and st.json == s.params_json:
+    if st is not None and st.json == s.params_json and st.fps == fps:
         return st
     if not s.params_json:
         st = make_state(s, scene)
     else:
         resolved = json.loads(s.params_json)
         p = engine.params_from_dict(resolved)
+        if float(resolved.get("motion", {}).get("fps", fps)) != fps:
+            # The scene's frame rate changed: the stored parameters follow it.
+            p = engine.replace(p, keys={"motion.fps": fps})
+            resolved = engine.resolved(p)
         live, sidecar, thr = _pin_foam(p, resolved, s.foam)
-        st = State(live, resolved, s.params_json, sidecar, thr)
+        st = State(live, resolved, json.dumps(resolved, sort_keys=True), sidecar, thr)
+        if st.json != s.params_json:
+            with suspended():
+                s.params_json = st.json
+                s.sidecar_json = json.dumps(sidecar, sort_keys=True)
     _remember(obj, st)
     return st
 
