@@ -1,11 +1,13 @@
 """Renders the add-on's sea headless with Eevee, for docs/blender-eevee.png.
 
-    PYTHONPATH=DIR blender -b --factory-startup --python contrib/blender/addon_screenshot.py -- OUT.png [SIZE [FRAME]]
+    PYTHONPATH=DIR blender -b --factory-startup --python contrib/blender/addon_screenshot.py -- OUT.png [SIZE [FRAME [ENGINE]]]
 
 DIR holds the seasynth module (docs/blender.md, Install). The sea: Add → seasynth sea with
 the `moderate` preset (JONSWAP, 10 m/s, choppiness 0.8) at SIZE² vertices (default 512)
 over 256 m, foam and normals on, the add-on's water material, Seamless Edges on and the tile
-repeated 3 × 3 by Array modifiers, under a sun and a sky, seen from 10 m above the water; scene frame FRAME (default 1) at 24 fps. 960 × 540 pixels.
+repeated 3 × 3 by Array modifiers, under a sun and a sky, seen from 10 m above the water; scene frame FRAME (default 1) at 24 fps. 960 × 540 pixels,
+Eevee; ENGINE `cycles` renders with Cycles instead (64 samples on the CPU, no denoiser:
+Debian's build has none).
 """
 
 import math
@@ -21,6 +23,7 @@ args = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
 out = os.path.abspath(args[0] if args else "blender-eevee.png")
 size = int(args[1]) if len(args) > 1 else 512
 frame = int(args[2]) if len(args) > 2 else 1
+engine = args[3] if len(args) > 3 else "eevee"
 
 seasynth_addon.register()
 for o in list(bpy.data.objects):
@@ -69,9 +72,15 @@ bg = nodes["Background"]
 bg.inputs["Strength"].default_value = 0.35
 world.node_tree.links.new(sky.outputs["Color"], bg.inputs["Color"])
 
-scene.render.engine = "BLENDER_EEVEE"
-scene.eevee.taa_render_samples = 32
-scene.eevee.use_ssr = True
+if engine == "cycles":
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 64
+    scene.cycles.use_denoising = False
+else:
+    scene.render.engine = "BLENDER_EEVEE"
+    scene.eevee.taa_render_samples = 32
+    scene.eevee.use_ssr = True
 scene.view_settings.view_transform = "Filmic"
 scene.view_settings.look = "Medium High Contrast"
 scene.render.resolution_x, scene.render.resolution_y = 960, 540

@@ -11,7 +11,7 @@ import bpy
 
 TAG = "seasynth_water"
 DEEP = (0.002, 0.012, 0.022, 1.0)
-CREST = (0.012, 0.09, 0.09, 1.0)
+CREST = (0.006, 0.045, 0.05, 1.0)
 
 
 def _node(nodes, kind, name, location):
