@@ -136,7 +136,11 @@ def main():
             flush=True,
         )
     print()
-    print(f"frame change, median of {frames} frames, Blender {bpy.app.version_string}, {os.cpu_count()} cores")
+    load = ", ".join(f"{v:.1f}" for v in os.getloadavg())
+    print(
+        f"frame change, median of {frames} frames, Blender {bpy.app.version_string}, "
+        f"{os.cpu_count()} cores, load average {load}"
+    )
     print()
     print(
         "| N | seasynth sea, playing (N² vertices) | seasynth sea, scrubbing | Ocean, Displace on N² vertices (r, simulation r²) "
