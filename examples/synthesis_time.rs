@@ -3,7 +3,8 @@
 //! of R runs, in milliseconds. `python/examples/overhead.py` runs it beside the Python
 //! call.
 //!
-//! Run: `cargo run --release --example synthesis_time -- 1024 15`.
+//! Run: `cargo run --release --example synthesis_time -- 1024 15 [keep]` (`keep`: freed
+//! memory kept for reuse, `pipeline::memory::keep_freed_memory`).
 
 use std::time::Instant;
 
@@ -15,6 +16,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let n: usize = args.first().map_or(Ok(1024), |a| a.parse())?;
     let runs: usize = args.get(1).map_or(Ok(15), |a| a.parse())?;
+    if args.get(2).is_some_and(|a| a == "keep") {
+        seasynth::pipeline::memory::keep_freed_memory();
+    }
     let mut params = seasynth::Params::preset("li-tian")?;
     params.grid.size = Size2([n, n]);
     params.validate()?;

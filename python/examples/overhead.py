@@ -3,7 +3,10 @@
 R runs each, the ratio per pair of runs.
 
     cargo build --release --example synthesis_time
-    python python/examples/overhead.py [SIZES] [R] [PAIRS]      # e.g. 1024,4096 15 5
+    python python/examples/overhead.py [SIZES] [R] [PAIRS] [keep]   # e.g. 1024,4096 15 5
+
+`keep`: both keep freed memory for reuse (`seasynth.keep_freed_memory()`); without it
+both return it to the system, glibc's default.
 """
 
 import pathlib
@@ -29,8 +32,12 @@ def python_ms(n: int, runs: int) -> float:
     return statistics.median(times)
 
 
+KEEP = len(sys.argv) > 4 and sys.argv[4] == "keep"
+
+
 def rust_ms(n: int, runs: int) -> float:
-    out = subprocess.run([str(RUST), str(n), str(runs)], capture_output=True, text=True, check=True)
+    args = [str(RUST), str(n), str(runs)] + (["keep"] if KEEP else [])
+    out = subprocess.run(args, capture_output=True, text=True, check=True)
     return float(out.stdout.strip())
 
 
@@ -38,6 +45,8 @@ def main() -> None:
     sizes = [int(s) for s in (sys.argv[1] if len(sys.argv) > 1 else "1024,4096").split(",")]
     runs = int(sys.argv[2]) if len(sys.argv) > 2 else 15
     pairs = int(sys.argv[3]) if len(sys.argv) > 3 else 5
+    if KEEP:
+        seasynth.keep_freed_memory()
     print("| grid | Python `generate` (ms) | Rust `synthesize_checked` (ms) | Python ÷ Rust (median of pairs) |")
     print("|---|---|---|---|")
     for n in sizes:

@@ -354,20 +354,29 @@ impl PyField {
     }
 }
 
+/// The derived fields of the maps `kinds`; `resample` false: a choppy field keeps its
+/// undisplaced heights and skips the resampling (a displacement map's heights).
+fn extras_with(kinds: &[MapKind], resample: bool) -> Extras {
+    let mut e = extras_of(kinds);
+    e.maps_only = !resample;
+    e
+}
+
 /// The field of `params` at its time, with the maps `maps`, computed on `threads`
 /// worker threads (the same bits on any number).
 #[pyfunction]
-#[pyo3(signature = (params, maps = Vec::new(), threads = None))]
+#[pyo3(signature = (params, maps = Vec::new(), threads = None, resample = true))]
 fn generate(
     py: Python<'_>,
     params: &PyParams,
     maps: Vec<String>,
     threads: Option<usize>,
+    resample: bool,
 ) -> PyResult<PyField> {
     let kinds = map_kinds(&maps)?;
     let params = params.inner.clone();
     run(py, threads, move || {
-        let synthesis = compute::synthesize_checked(&params, extras_of(&kinds))?;
+        let synthesis = compute::synthesize_checked(&params, extras_with(&kinds, resample))?;
         Ok(PyField::new(params, synthesis, &kinds, None))
     })
 }
@@ -413,12 +422,13 @@ impl PyFrames {
 /// Frames 0 … frames − 1 of the sequence of `params` (frame k at time + k/fps), with
 /// the maps `maps`: `seasynth animate`'s frames, bit for bit.
 #[pyfunction]
-#[pyo3(signature = (params, frames, maps = Vec::new(), threads = None))]
+#[pyo3(signature = (params, frames, maps = Vec::new(), threads = None, resample = true))]
 fn animate(
     params: &PyParams,
     frames: usize,
     maps: Vec<String>,
     threads: Option<usize>,
+    resample: bool,
 ) -> PyResult<PyFrames> {
     let kinds = map_kinds(&maps)?;
     let params = params.inner.clone();
@@ -430,12 +440,18 @@ fn animate(
         .spawn(move || {
             let produce = || {
                 let foam = kinds.contains(&MapKind::Foam);
-                let result = sequence::each_frame(&params, frames, extras_of(&kinds), foam, |f| {
-                    let mut p = params.clone();
-                    p.time_s = f.time_s;
-                    let field = PyField::new(p, f.synthesis, &kinds, f.foam);
-                    tx.send(Ok(field)).is_ok()
-                });
+                let result = sequence::each_frame(
+                    &params,
+                    frames,
+                    extras_with(&kinds, resample),
+                    foam,
+                    |f| {
+                        let mut p = params.clone();
+                        p.time_s = f.time_s;
+                        let field = PyField::new(p, f.synthesis, &kinds, f.foam);
+                        tx.send(Ok(field)).is_ok()
+                    },
+                );
                 if let Err(e) = result {
                     tx.send(Err(e.into())).ok();
                 }
@@ -569,6 +585,21 @@ fn plan_json(
     Ok(doc.to_string())
 }
 
+/// Makes the allocator keep freed memory for reuse instead of returning it to the
+/// system (glibc), as `seasynth animate` does: repeated fields of one size then reuse
+/// their buffers instead of paying a page fault per 4 KiB. Kept until the process ends.
+/// The work runs on a worker thread, whose own glibc arena would not keep large blocks,
+/// so every thread is also given the main arena (`M_ARENA_MAX` = 1).
+#[pyfunction]
+fn keep_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets the allocator's tuning parameters (under its lock).
+    unsafe {
+        libc::mallopt(libc::M_ARENA_MAX, 1);
+    }
+    seasynth::pipeline::memory::keep_freed_memory();
+}
+
 /// The flag names accepted as keys and the preset key each stands for.
 #[pyfunction]
 fn flag_keys() -> Vec<(&'static str, &'static str)> {
@@ -597,6 +628,7 @@ fn _seasynth(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analyze_array, m)?)?;
     m.add_function(wrap_pyfunction!(plan_json, m)?)?;
     m.add_function(wrap_pyfunction!(flag_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(keep_freed_memory, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add("ParamError", m.py().get_type::<ParamError>())?;
     m.add("ResourceError", m.py().get_type::<ResourceError>())?;

@@ -195,3 +195,12 @@ def test_spectrum_and_analyze_give_the_json_reports(cli, tmp_path):
     wide = np.zeros((128, 256), np.float32)
     wide[:, ::2] = f.height
     assert seasynth.analyze(wide[:, ::2], extent=f.params.extent_m)["std_m"] == a["std_m"]
+
+
+def test_without_resampling_the_heights_are_the_displacement_maps(cli, tmp_path):
+    keys = dict(method="fft", spectrum="jonswap", choppiness=1, size=64, seed=8)
+    a = seasynth.generate(maps=("displacement",), resample=False, **keys)
+    b = seasynth.generate(maps=("displacement",), **keys)
+    assert np.array_equal(a.displacement, b.displacement)
+    assert np.array_equal(a.height, b.displacement[:, :, 2])
+    assert not np.array_equal(a.height, b.height), "the resampled heights differ from the undisplaced ones"

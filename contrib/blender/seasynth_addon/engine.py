@@ -87,8 +87,9 @@ def resolved(p):
 def frame(p, time_s, maps):
     """The sea at `time_s` seconds, with the extra `maps` ("displacement", "normal",
     "foam"): a frame with `height`, `displacement`, `normal`, `foam` (numpy float32,
-    rows along y), `stats` and `sidecar()`."""
-    return _wrap(_module().generate, p, time=time_s, maps=tuple(maps))
+    rows along y), `stats` and `sidecar()`. With the displacement the vertices move by
+    it, so the choppy heights are not resampled onto the grid (`resample=False`)."""
+    return _wrap(_module().generate, p, time=time_s, maps=tuple(maps), resample="displacement" not in maps)
 
 
 def write_sequence(p, folder, frames, formats, start_frame, up="z", exr_half=False, exr_compression="zip"):
