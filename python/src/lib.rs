@@ -93,16 +93,26 @@ fn run<T: Send + 'static>(
             tx.send(result).ok();
         })
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
-    let mut rx = rx;
+    match wait(py, rx)? {
+        (Some(result), _) => result.map_err(py_err),
+        (None, _) => Err(PyRuntimeError::new_err("the computation failed (a panic)")),
+    }
+}
+
+/// Waits for the next value on `rx` with the interpreter released, checking for signals
+/// every 0.1 s (a `KeyboardInterrupt` is returned at once); `None` when the sender is
+/// gone. Gives the receiver back.
+fn wait<T: Send>(
+    py: Python<'_>,
+    mut rx: mpsc::Receiver<T>,
+) -> PyResult<(Option<T>, mpsc::Receiver<T>)> {
     loop {
         let (got, back) = py.detach(move || (rx.recv_timeout(Duration::from_millis(100)), rx));
         rx = back;
         match got {
-            Ok(result) => return result.map_err(py_err),
+            Ok(value) => return Ok((Some(value), rx)),
             Err(RecvTimeoutError::Timeout) => py.check_signals()?,
-            Err(RecvTimeoutError::Disconnected) => {
-                return Err(PyRuntimeError::new_err("the computation failed (a panic)"));
-            }
+            Err(RecvTimeoutError::Disconnected) => return Ok((None, rx)),
         }
     }
 }
@@ -395,21 +405,18 @@ impl PyFrames {
 
     fn __next__(&self, py: Python<'_>) -> PyResult<Option<PyField>> {
         let taken = self.rx.lock().unwrap_or_else(|p| p.into_inner()).take();
-        let Some(mut rx) = taken else {
+        let Some(rx) = taken else {
             return Ok(None);
         };
-        loop {
-            let (got, back) = py.detach(move || (rx.recv_timeout(Duration::from_millis(100)), rx));
-            rx = back;
-            match got {
-                Ok(Ok(frame)) => {
-                    *self.rx.lock().unwrap_or_else(|p| p.into_inner()) = Some(rx);
-                    return Ok(Some(frame));
-                }
-                Ok(Err(e)) => return Err(py_err(e)),
-                Err(RecvTimeoutError::Timeout) => py.check_signals()?,
-                Err(RecvTimeoutError::Disconnected) => return Ok(None),
+        // On an interrupt the receiver is dropped, which stops the producer after its
+        // frame.
+        match wait(py, rx)? {
+            (Some(Ok(frame)), rx) => {
+                *self.rx.lock().unwrap_or_else(|p| p.into_inner()) = Some(rx);
+                Ok(Some(frame))
             }
+            (Some(Err(e)), _) => Err(py_err(e)),
+            (None, _) => Ok(None),
         }
     }
 
@@ -572,7 +579,7 @@ fn plan_json(
         },
     })
     .map_err(|e| py_err(e.into()))?;
-    let mut doc = plan_json(&list, |_| true);
+    let mut doc = plan_json(&list.jobs, &list.keys, |_| true);
     if let Some(rows) = doc.get_mut("rows").and_then(|r| r.as_array_mut()) {
         for (row, job) in rows.iter_mut().zip(&list.jobs) {
             if let (Some(obj), Ok(p)) = (row.as_object_mut(), &job.params) {

@@ -25,7 +25,9 @@ use crate::export::{Format, HeightMapping, OutputKind, Staged};
 use crate::field::Synthesis;
 use crate::pipeline::batch::files::{complete_files, hash_hex, remove_stale_temporaries, suffixes};
 use crate::pipeline::batch::index::{self, Index, Row, Status};
-use crate::pipeline::batch::list::{DesignArgs, Job, JobList, ListArgs, PlanRow, job_list};
+use crate::pipeline::batch::list::{
+    DesignArgs, Job, JobList, ListArgs, job_list, plan_json, plan_rows,
+};
 use crate::pipeline::batch::plan::{Items, Manifest, Selection, Shard, Sweep};
 use crate::pipeline::batch::scheduler::{self, Overrides, Task};
 use crate::pipeline::jobs::{self, Progress};
@@ -521,6 +523,7 @@ fn plural(n: usize, noun: &str) -> String {
     }
 }
 
+/// The index row of a job complete from an earlier run ([`complete_files`]).
 fn kept_row(job: &Job, suffixes: &[String], record: &JobRecord, dir: &Path) -> Option<Row> {
     let (files, stats) = complete_files(&job.name, suffixes, &record.hash, dir)?;
     Some(Row {
@@ -624,19 +627,9 @@ fn earlier_tasks(dir: &Path, stem: &str, batch: &str) -> BTreeMap<usize, (String
 fn print_plan(all: &[Job], keys: &[String], selection: Selection, json: bool) -> Result<()> {
     // The seed has its own column.
     let columns: Vec<&String> = keys.iter().filter(|k| canonical_key(k) != "seed").collect();
-    let rows: Vec<PlanRow> = all
-        .iter()
-        .filter(|j| selection.contains(j.index))
-        .map(|j| PlanRow {
-            job: j.index,
-            name: &j.name,
-            seed: j.params.as_ref().ok().map(|p| p.seed),
-            params: &j.values,
-            error: j.params.as_ref().err().map(String::as_str),
-        })
-        .collect();
+    let rows = plan_rows(all, |j| selection.contains(j));
     let text = if json {
-        let doc = serde_json::json!({ "jobs": all.len(), "keys": keys, "rows": rows });
+        let doc = plan_json(all, keys, |j| selection.contains(j));
         format!("{}\n", serde_json::to_string_pretty(&doc)?)
     } else {
         let cell = |s: &str| {

@@ -279,7 +279,6 @@ pub fn design_entries(
     design.entries(&entries)
 }
 
-/// The index row of a job complete from an earlier run ([`complete_files`]).
 /// One job of `--plan`.
 #[derive(Serialize)]
 pub struct PlanRow<'a> {
@@ -291,11 +290,9 @@ pub struct PlanRow<'a> {
     pub error: Option<&'a str>,
 }
 
-/// The `--plan --json` document of `jobs` (the selected ones: `selected(job)`).
-pub fn plan_json(list: &JobList, selected: impl Fn(usize) -> bool) -> serde_json::Value {
-    let rows: Vec<PlanRow> = list
-        .jobs
-        .iter()
+/// The rows of `--plan`: the jobs `selected(job)` holds, in order.
+pub fn plan_rows(jobs: &[Job], selected: impl Fn(usize) -> bool) -> Vec<PlanRow<'_>> {
+    jobs.iter()
         .filter(|j| selected(j.index))
         .map(|j| PlanRow {
             job: j.index,
@@ -304,6 +301,15 @@ pub fn plan_json(list: &JobList, selected: impl Fn(usize) -> bool) -> serde_json
             params: &j.values,
             error: j.params.as_ref().err().map(String::as_str),
         })
-        .collect();
-    serde_json::json!({ "jobs": list.jobs.len(), "keys": list.keys, "rows": rows })
+        .collect()
+}
+
+/// The `--plan --json` document of `jobs` (the selected ones: `selected(job)`).
+pub fn plan_json(
+    jobs: &[Job],
+    keys: &[String],
+    selected: impl Fn(usize) -> bool,
+) -> serde_json::Value {
+    let rows = plan_rows(jobs, selected);
+    serde_json::json!({ "jobs": jobs.len(), "keys": keys, "rows": rows })
 }
