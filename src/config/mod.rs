@@ -111,6 +111,25 @@ impl Nonlinear {
     }
 }
 
+/// How the bound waves of a second-order sea are evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NonlinearMethod {
+    /// The exact pair sum over the components of `nonlinear_fraction` of the variance.
+    #[default]
+    Pairs,
+    /// Every component, by transforms of weighted linear fields, with fitted low-rank
+    /// resonance terms: an approximation (a few percent of the bound waves' rms; the
+    /// sidecar records the estimate), not the default.
+    Fitted,
+}
+
+impl NonlinearMethod {
+    pub fn is_pairs(&self) -> bool {
+        *self == NonlinearMethod::Pairs
+    }
+}
+
 /// The fraction of the spectrum's variance the second-order pairs are formed from, when
 /// not given.
 pub const DEFAULT_NONLINEAR_FRACTION: f64 = 0.99;
@@ -340,6 +359,10 @@ pub struct SpectrumParams {
     /// this fraction of the variance (0 < q ≤ 1; default 0.99).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nonlinear_fraction: Option<f64>,
+    /// `pairs` (default: the exact pair sum) or `fitted` (every component by transforms,
+    /// fitted resonance terms: approximate).
+    #[serde(skip_serializing_if = "NonlinearMethod::is_pairs")]
+    pub nonlinear_method: NonlinearMethod,
 }
 
 /// The `fractal` spectrum (terrain).
@@ -621,6 +644,7 @@ impl Default for SpectrumParams {
             gamma: 3.3,
             nonlinear: Nonlinear::Linear,
             nonlinear_fraction: None,
+            nonlinear_method: NonlinearMethod::Pairs,
         }
     }
 }

@@ -3,10 +3,11 @@
 
 use super::spectral::Spectral;
 use super::{HeightMethod, finish};
-use crate::config::{DEFAULT_NONLINEAR_FRACTION, Nonlinear, Params};
+use crate::config::{DEFAULT_NONLINEAR_FRACTION, Nonlinear, NonlinearMethod, Params};
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::{Extras, Surface};
+use crate::field::fft::second_order::transform::TransformBound;
 use crate::field::fft::second_order::{SecondOrder, SecondOrderInfo};
 use crate::field::fft::{self, Amplitudes};
 use crate::grid::Grid;
@@ -22,8 +23,16 @@ struct Ready {
     spectral: Spectral,
     /// The random draws, when kept between frames.
     amplitudes: Option<Amplitudes>,
-    /// The paired components of a second-order sea.
-    second_order: Option<SecondOrder>,
+    /// The bound waves of a second-order sea.
+    second_order: Option<Bound>,
+}
+
+/// How the bound waves are evaluated (`spectrum.nonlinear_method`).
+enum Bound {
+    /// The exact pair sum of the strongest components.
+    Pairs(SecondOrder),
+    /// Every component, fitted kernels, by transforms (with what the sidecar records).
+    Fitted(Box<TransformBound>, SecondOrderInfo),
 }
 
 impl FftSea {
@@ -50,10 +59,13 @@ impl FftSea {
             Some(a) => a.frame(&setup),
             None => fft::synthesize_spectrum(&setup),
         };
-        let bound = ready
-            .second_order
-            .as_ref()
-            .map(|so| so.add_to(&setup, &mut half));
+        let bound = ready.second_order.as_ref().map(|b| match b {
+            Bound::Pairs(so) => so.add_to(&setup, &mut half),
+            Bound::Fitted(tb, info) => {
+                tb.add_to(&setup, &mut half);
+                info.clone()
+            }
+        });
         let h0max_m = half.h0max_m;
         let (grid, surface) = ready.spectral.heights(half, extras);
         (grid, surface, h0max_m, bound)
@@ -75,8 +87,17 @@ impl HeightMethod for FftSea {
         let amplitudes = keep_draws.then(|| Amplitudes::new(&spectral.setup(0.0)));
         let s = &self.params.spectrum;
         let second_order = (s.nonlinear == Nonlinear::SecondOrder).then(|| {
-            let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
-            SecondOrder::new(&spectral.setup(0.0), q)
+            let setup = spectral.setup(0.0);
+            match s.nonlinear_method {
+                NonlinearMethod::Pairs => {
+                    let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
+                    Bound::Pairs(SecondOrder::new(&setup, q))
+                }
+                NonlinearMethod::Fitted => {
+                    let (tb, info) = TransformBound::for_setup(&setup);
+                    Bound::Fitted(Box::new(tb), info)
+                }
+            }
         });
         self.ready = Some(Ready {
             spectral,
@@ -95,11 +116,16 @@ impl HeightMethod for FftSea {
     }
 
     fn bytes_per_sample(&self) -> u64 {
-        // A second-order sea adds its full-plane bound spectrum (complex f64).
-        if self.params.spectrum.nonlinear.is_linear() {
+        // A second-order sea adds its full-plane bound spectrum (complex f64); the fitted
+        // method its components and about a dozen complex f64 arrays of the grid padded
+        // by 3/2 per axis.
+        let s = &self.params.spectrum;
+        if s.nonlinear.is_linear() {
             10
-        } else {
+        } else if s.nonlinear_method.is_pairs() {
             26
+        } else {
+            10 + 88 + 12 * 16 * 9 / 4
         }
     }
 

@@ -50,7 +50,7 @@ use crate::grid::signed_index;
 use crate::simd::Isa;
 use crate::spectrum::{Dispersion, G};
 
-type C64 = Complex<f64>;
+pub(crate) type C64 = Complex<f64>;
 
 /// A free wave of the linear sea.
 #[derive(Debug, Clone, Copy)]
@@ -188,6 +188,13 @@ pub struct SecondOrderInfo {
     pub sum_pairs_dropped: u64,
     pub difference_pairs_dropped: u64,
     pub pairs: u64,
+    /// `fitted` when the bound waves come from the fitted kernels by transforms (absent:
+    /// the exact pair sum).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method: Option<String>,
+    /// The fitted kernels' estimated rms error, as a fraction of the bound waves' rms.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_rel_rms_error: Option<f64>,
 }
 
 /// The paired components of a sea, by kx line.
@@ -265,7 +272,9 @@ impl SecondOrder {
         let mut kept = 0.0;
         let mut count = 0;
         for c in &all {
-            if kept >= fraction * total {
+            // q = 1 keeps every component (the sum of the largest reaches the total in
+            // floating point before the smallest are added).
+            if fraction < 1.0 && kept >= fraction * total {
                 break;
             }
             kept += c.p;
@@ -370,6 +379,32 @@ impl SecondOrder {
     /// The full-plane Z of the bound waves at `setup`'s time (nx lines of ny, both in FFT
     /// order), and the sum and difference pairs kept on the grid.
     pub fn bound_plane(&self, setup: &SpectrumSetup) -> (Vec<C64>, u64, u64) {
+        let depth = self.depth;
+        self.bound_plane_by(
+            setup,
+            |a, b, same| {
+                if same {
+                    self_kernels(a, depth).0
+                } else {
+                    kernel_plus(a, b, depth)
+                }
+            },
+            |a, b| kernel_minus(a, b, depth),
+        )
+    }
+
+    /// [`Self::bound_plane`] with the kernels `plus(a, b, a is b)` and `minus(a, b)` of
+    /// different waves (the set-down of one wave stays exact).
+    pub fn bound_plane_by<P, M>(
+        &self,
+        setup: &SpectrumSetup,
+        plus: P,
+        minus: M,
+    ) -> (Vec<C64>, u64, u64)
+    where
+        P: Fn(&Component, &Component, bool) -> f64 + Sync,
+        M: Fn(&Component, &Component) -> f64 + Sync,
+    {
         let (nx, ny) = (self.nx, self.ny);
         let b = self.amplitudes(setup);
         let c = &self.comps;
@@ -402,11 +437,8 @@ impl SecondOrder {
                     for i in self.line(na) {
                         let js = if na == nb { i..lb.end } else { lb.clone() };
                         for j in js {
-                            let (kp, f) = if i == j {
-                                (self_kernels(&c[i], depth).0, 1.0)
-                            } else {
-                                (kernel_plus(&c[i], &c[j], depth), 2.0)
-                            };
+                            let f = if i == j { 1.0 } else { 2.0 };
+                            let kp = plus(&c[i], &c[j], i == j);
                             if add(c[i].m + c[j].m, b[i] * b[j] * (f * kp)) {
                                 sums += 1;
                             }
@@ -423,7 +455,7 @@ impl SecondOrder {
                                 let (km, f) = if i == j {
                                     (self_kernels(&c[i], depth).1, 1.0)
                                 } else {
-                                    (kernel_minus(&c[i], &c[j], depth), 2.0)
+                                    (minus(&c[i], &c[j]), 2.0)
                                 };
                                 if add(c[i].m - c[j].m, b[i] * b[j].conj() * (f * km)) {
                                     diffs += 1;
@@ -442,28 +474,8 @@ impl SecondOrder {
     /// Adds the bound waves at `setup`'s time to the linear half spectrum `half`, and
     /// returns the pair counts for the sidecar.
     pub fn add_to(&self, setup: &SpectrumSetup, half: &mut HalfSpectrum) -> SecondOrderInfo {
-        let (nx, ny) = (self.nx, self.ny);
         let (z, sums, diffs) = self.bound_plane(setup);
-        half.data
-            .par_chunks_mut(ny)
-            .enumerate()
-            .for_each(|(n, line)| {
-                let n = n as i64;
-                if !on_grid(n, nx) {
-                    return;
-                }
-                let row = n as usize;
-                let mirror = (-n).rem_euclid(nx as i64) as usize;
-                for (idx, v) in line.iter_mut().enumerate() {
-                    let m = signed_index(idx, ny);
-                    if !on_grid(m, ny) {
-                        continue;
-                    }
-                    let midx = (-m).rem_euclid(ny as i64) as usize;
-                    let h = 0.5 * (z[row * ny + idx] + z[mirror * ny + midx].conj());
-                    *v += Complex32::new(h.re as f32, h.im as f32);
-                }
-            });
+        add_plane(&z, half);
         SecondOrderInfo {
             sum_pairs_dropped: self.info.pairs - sums,
             difference_pairs_dropped: self.info.pairs - diffs,
@@ -471,6 +483,35 @@ impl SecondOrder {
         }
     }
 }
+
+/// Adds the half spectrum ½(Z_q + conj Z_−q) of a full-plane Z (nx lines of ny, FFT
+/// order) to `half`, on the grid's resolved cells.
+pub fn add_plane(z: &[C64], half: &mut HalfSpectrum) {
+    let (nx, ny) = (half.nx, half.ny);
+    half.data
+        .par_chunks_mut(ny)
+        .enumerate()
+        .for_each(|(n, line)| {
+            let n = n as i64;
+            if !on_grid(n, nx) {
+                return;
+            }
+            let row = n as usize;
+            let mirror = (-n).rem_euclid(nx as i64) as usize;
+            for (idx, v) in line.iter_mut().enumerate() {
+                let m = signed_index(idx, ny);
+                if !on_grid(m, ny) {
+                    continue;
+                }
+                let midx = (-m).rem_euclid(ny as i64) as usize;
+                let h = 0.5 * (z[row * ny + idx] + z[mirror * ny + midx].conj());
+                *v += Complex32::new(h.re as f32, h.im as f32);
+            }
+        });
+}
+
+pub mod fit;
+pub mod transform;
 
 #[cfg(test)]
 mod tests;

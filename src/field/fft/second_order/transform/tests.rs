@@ -1,0 +1,138 @@
+use super::*;
+use crate::config::Params;
+use crate::config::layers::{Assignment, apply};
+use crate::field::fft::InverseFft2;
+use crate::field::fft::second_order::SecondOrder;
+use crate::field::fft::second_order::add_plane;
+use rustfft::num_complex::Complex32;
+
+fn field_of(spec: crate::grid::GridSpec, fill: impl FnOnce(&mut HalfSpectrum)) -> Vec<f32> {
+    let mut half = HalfSpectrum {
+        nx: spec.nx,
+        ny: spec.ny,
+        data: vec![Complex32::new(0.0, 0.0); (spec.nx / 2 + 1) * spec.ny],
+        h0max_m: 0.0,
+    };
+    fill(&mut half);
+    InverseFft2::new(spec.nx, spec.ny).process(half)
+}
+
+#[test]
+fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
+    // Every component of a small physical sea: the padded products and transforms give
+    // the pair sum of the same kernels (sum and difference terms, the self-pairs, the
+    // exact set-down, the dropped outputs), deep and finite depth, at two times.
+    const TOL: f64 = 1e-5;
+    for depth in [None, Some(8.0)] {
+        let mut sets = vec![
+            "method=fft",
+            "spectrum=pierson-moskowitz",
+            "wind-speed=12",
+            "spectrum.spreading=hasselmann",
+            "size=40x36",
+            "extent=480x400",
+        ];
+        if depth.is_some() {
+            sets.push("depth=8");
+        }
+        let a: Vec<Assignment> = sets
+            .iter()
+            .map(|s| Assignment::parse_set(s).unwrap())
+            .collect();
+        let params = apply(Params::default(), &a).unwrap();
+        let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+        let spec = params.grid_spec();
+        for t in [0.0, 3.7] {
+            let setup = SpectrumSetup {
+                spec,
+                spectrum: model.as_ref(),
+                dispersion,
+                seed: 3,
+                time_s: t,
+                loop_period_s: None,
+            };
+            let so = SecondOrder::new(&setup, 1.0);
+            let (dkx, dky) = setup.dk();
+            let bounds = Box2 {
+                kx_max: dkx * (spec.nx / 2) as f64,
+                ky_max: dky * (spec.ny / 2) as f64,
+            };
+            let kf = KernelFit::new(model.as_ref(), dispersion, bounds, (dkx, dky));
+            let pairs = so.bound_plane_by(
+                &setup,
+                |a, b, _| kf.kernel(a, b, 1.0, depth).0,
+                |a, b| kf.kernel(a, b, -1.0, depth).0,
+            );
+            let want = field_of(spec, |h| add_plane(&pairs.0, h));
+            let tb = TransformBound::new(so.components().to_vec(), spec.nx, spec.ny, depth, kf);
+            let got = field_of(spec, |h| tb.add_to(&setup, h));
+            let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
+            assert!(scale > 0.0);
+            for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
+                assert!(
+                    (f64::from(g) - f64::from(w)).abs() <= TOL * scale,
+                    "depth {depth:?} t {t} sample {i}: {g} vs {w}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+#[ignore = "a measurement, not a check: \
+            cargo test --release --lib transform_timing -- --ignored --nocapture"]
+fn transform_timing() {
+    // Wall times of the linear half spectrum with its inverse transform, of the fit and
+    // of the transform evaluation of the bound waves, every component, PM 15 m/s.
+    for n in [1024usize, 2048] {
+        let size = format!("size={n}");
+        let sets = [
+            "method=fft",
+            "spectrum=pierson-moskowitz",
+            "wind-speed=15",
+            "spectrum.spreading=hasselmann",
+            &size,
+            "extent=2048",
+        ];
+        let a: Vec<Assignment> = sets
+            .iter()
+            .map(|s| Assignment::parse_set(s).unwrap())
+            .collect();
+        let params = apply(Params::default(), &a).unwrap();
+        let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+        let spec = params.grid_spec();
+        let setup = SpectrumSetup {
+            spec,
+            spectrum: model.as_ref(),
+            dispersion,
+            seed: 3,
+            time_s: 0.0,
+            loop_period_s: None,
+        };
+        let t0 = std::time::Instant::now();
+        let half = crate::field::fft::synthesize_spectrum(&setup);
+        let _ = InverseFft2::new(spec.nx, spec.ny).process(half);
+        let linear = t0.elapsed().as_secs_f64();
+        let t1 = std::time::Instant::now();
+        let so = SecondOrder::new(&setup, 1.0);
+        let (dkx, dky) = setup.dk();
+        let bounds = Box2 {
+            kx_max: dkx * (spec.nx / 2) as f64,
+            ky_max: dky * (spec.ny / 2) as f64,
+        };
+        let kf = KernelFit::new(model.as_ref(), dispersion, bounds, (dkx, dky));
+        let comps = so.components().len();
+        let tb = TransformBound::new(so.components().to_vec(), spec.nx, spec.ny, None, kf);
+        let prepare = t1.elapsed().as_secs_f64();
+        let t2 = std::time::Instant::now();
+        let mut half = crate::field::fft::synthesize_spectrum(&setup);
+        tb.add_to(&setup, &mut half);
+        let _ = InverseFft2::new(spec.nx, spec.ny).process(half);
+        let frame = t2.elapsed().as_secs_f64();
+        eprintln!(
+            "{n}²: {comps} components; linear {linear:.3} s; prepare (components, fit) \
+             {prepare:.3} s; second-order frame {frame:.3} s ({:.1}× the linear)",
+            frame / linear
+        );
+    }
+}
