@@ -1,0 +1,270 @@
+//! The tables `bench` prints after the stages: trochoids, choppy heights and map PNGs,
+//! noise bases, mesh exports.
+
+use super::*;
+
+/// The trochoid method (`thon-2000` preset, n² over n meters): the setup with the
+/// turbulence fit, the whole field on every thread, and the samples per second of one
+/// core for the trochoids + turbulence, the trochoids alone and the turbulence alone.
+pub(super) fn trochoid_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
+    use crate::field::trochoid::{RowScratch, TrochoidSea};
+    let mut params = crate::config::presets::load("thon-2000")?;
+    params.grid = bench_params(n).grid;
+    let spec = params.grid_spec();
+    let setup = time(repeats, || {
+        TrochoidSea::new(&params).expect("a valid preset")
+    });
+    let sea = TrochoidSea::new(&params)?;
+    let field = time(repeats, || sea.grid(&spec, 0.0));
+    print_row("trochoid setup and fit", setup, bare, NAME_WIDTH);
+    print_row("trochoid field (thon-2000)", field, bare, NAME_WIDTH);
+    // One core: 64 rows in this thread.
+    let rows = 64.min(n);
+    let per_core = |p: &Params| -> Result<f64> {
+        let sea = TrochoidSea::new(p)?;
+        let frame = sea.frame(0.0, Some((spec.dx_m(), spec.dy_m())));
+        let mut out = vec![0.0f32; n];
+        let mut scratch = RowScratch::default();
+        let t = time(repeats, || {
+            for j in 0..rows {
+                frame.grid_row(&spec, j, &mut out, &mut scratch);
+            }
+        });
+        Ok((rows * n) as f64 / t.as_secs_f64() / 1e6)
+    };
+    let all = per_core(&params)?;
+    let mut waves = params.clone();
+    waves.trochoid.turbulence = false;
+    let waves = per_core(&waves)?;
+    let mut noise = params.clone();
+    noise.trochoid.components = 1;
+    let noise = per_core(&noise)?;
+    println!(
+        "  trochoid samples per second on one core: {all:.1} M (trochoids + turbulence), {waves:.1} M (the {} trochoids alone), {noise:.1} M (turbulence and one trochoid)",
+        params.trochoid.components
+    );
+    Ok(())
+}
+
+/// The choppy height frame and its resampling, and the PNG writers of the height, normal
+/// and foam maps (each file's size beside it), as ratios to the bare FFT: a choppy sea
+/// (`choppy`, λ = 0.8) at the size being timed.
+pub(super) fn resampling_and_png_rows(
+    choppy: &Params,
+    dir: &std::path::Path,
+    repeats: usize,
+    bare: Duration,
+) -> Result<()> {
+    use crate::export::maps::{normal_rgb, write_gray16};
+    use crate::export::{Staged, rgb8};
+    let all = field::dynamics::Extras::ALL;
+    let heights = field::Synthesizer::new(choppy, Default::default(), true)?;
+    let full = field::Synthesizer::new(choppy, all, true)?;
+    let frame = full.frame(1.0);
+    let spec = frame.grid.spec;
+    let n = spec.nx;
+    let d = frame
+        .surface
+        .displacement
+        .as_ref()
+        .context("a choppy frame has its displacement")?;
+    let still = frame
+        .surface
+        .undisplaced_height
+        .as_ref()
+        .context("a choppy frame with its displacement keeps the undisplaced heights")?;
+    println!(
+        "  choppy heights and map PNGs (λ = {}):",
+        choppy.motion.choppiness
+    );
+    print_row(
+        "choppy height frame",
+        time(repeats, || heights.frame(1.0)),
+        bare,
+        NAME_WIDTH,
+    );
+    print_row(
+        "  of which: resampling",
+        time(repeats, || {
+            field::dynamics::resample_choppy(still, d, &spec)
+        }),
+        bare,
+        NAME_WIDTH,
+    );
+    let st = frame.grid.stats();
+    let mapping = HeightMapping {
+        min_m: st.min_m,
+        max_m: st.max_m,
+    };
+    let normals = frame.surface.normals().context("slopes were asked for")?;
+    let rgb = normal_rgb(&normals);
+    let j = frame
+        .surface
+        .jacobian
+        .as_ref()
+        .context("the Jacobian was asked for")?
+        .values(spec.len());
+    let t = crate::export::maps::FoamRule::of(choppy)
+        .resolve(&j)
+        .threshold;
+    let foam: Vec<u16> = j
+        .iter()
+        .map(|&j| crate::export::maps::foam_value(j, t))
+        .collect();
+    let mut sizes = Vec::new();
+    let mut file = |name: &str, write: &mut dyn FnMut(Staged) -> crate::error::Result<()>| {
+        let path = dir.join(format!("bench-{n}.{name}.png"));
+        let d = time(repeats, || {
+            let staged = Staged::create(&path).expect("bench output is writable");
+            write(staged).expect("bench output is writable")
+        });
+        sizes.push((name.to_string(), std::fs::metadata(&path)?.len()));
+        anyhow::Ok(d)
+    };
+    let height = file("height", &mut |s| {
+        s.write_with(|w| crate::export::png16::write(w, &frame.grid, &mapping))
+    })?;
+    let normal = file("normal", &mut |s| {
+        rgb8::write_map(s, &rgb, (n as u32, spec.ny as u32))
+    })?;
+    let foam = file("foam", &mut |s| {
+        s.write_with(|w| write_gray16(w, &spec, &foam))
+    })?;
+    print_row("PNG 16-bit height (choppy)", height, bare, NAME_WIDTH);
+    print_row("PNG 8-bit RGB normal map", normal, bare, NAME_WIDTH);
+    print_row("PNG 16-bit foam map", foam, bare, NAME_WIDTH);
+    print_row(
+        "  the three map PNGs",
+        height + normal + foam,
+        bare,
+        NAME_WIDTH,
+    );
+    let sizes: Vec<String> = sizes
+        .iter()
+        .map(|(k, b)| format!("{k} {:.2} MB", *b as f64 / 1e6))
+        .collect();
+    println!("  map PNG files: {}", sizes.join(", "));
+    Ok(())
+}
+
+/// Grid side of the noise-basis table.
+const NOISE_N: usize = 256;
+
+/// The noise bases side by side: CPU nanoseconds per sample per octave (every thread's
+/// time, so one core's cost) of the builtin kernel and of each noise-rs source under fBm,
+/// plane (2D) and tileable (4D torus), 6 octaves on a 256² grid, and each as a ratio to
+/// the builtin kernel (tileable, as by default).
+pub(super) fn noise_bases(repeats: usize) {
+    use crate::config::{NoiseBasis, NoiseFractal};
+    let params = bench_params(NOISE_N);
+    let spec = params.grid_spec();
+    let base = field::perlin_params(&params);
+    let per = |d: Duration| d.as_secs_f64() * 1e9 / (spec.len() as f64 * base.octaves as f64);
+    println!(
+        "\nnoise bases, fBm of {} octaves at {NOISE_N}²: CPU ns per sample per octave (ratio to builtin)",
+        base.octaves
+    );
+    println!(
+        "  {:<16} {:>12} {:>16}",
+        "basis", "plane (2D)", "tileable (4D)"
+    );
+    let mut builtin = 0.0;
+    for basis in NoiseBasis::ALL {
+        let mut cell = |tileable: bool| {
+            if tileable && basis == NoiseBasis::SuperSimplex {
+                return "-".to_string();
+            }
+            let pp = perlin::PerlinParams { tileable, ..base };
+            let ns = per(time_cpu(repeats, || {
+                perlin::noise_field(&spec, &pp, 0.0, basis, NoiseFractal::Fbm)
+            })
+            .1);
+            if basis == NoiseBasis::Builtin && tileable {
+                builtin = ns;
+            }
+            let ratio = if builtin > 0.0 { ns / builtin } else { 1.0 };
+            format!("{ns:.1} ({ratio:.1}×)")
+        };
+        let tiled = cell(true);
+        let plane = cell(false);
+        println!("  {:<16} {:>12} {:>16}", basis.name(), plane, tiled);
+    }
+}
+
+/// Times the mesh exports of periodic FFT fields: a 2048² OBJ and GLB (normals from
+/// central differences, and texture coordinates), and a 4×4 OBJ tile set of a 4096²
+/// field. Each file is removed after it is timed.
+pub(super) fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
+    use crate::export::options::{ExportOptions, Tiles};
+    println!(
+        "\nexports, periodic FFT fields: medians of {repeats} runs; files removed after timing"
+    );
+    println!(
+        "  {} {:>9} {:>9} {:>9}",
+        pad("export", 34),
+        "ms",
+        "MB",
+        "MB/s"
+    );
+    let cases = [
+        (2048, "obj", None, "OBJ 2048², normals + UVs"),
+        (2048, "glb", None, "GLB 2048², normals + UVs"),
+        (
+            4096,
+            "obj",
+            Some(Tiles {
+                columns: 4,
+                rows: 4,
+            }),
+            "OBJ 4096², 4×4 tiles",
+        ),
+    ];
+    for (n, ext, tiles, name) in cases {
+        let params = Params {
+            method: crate::config::Method::Fft,
+            grid: crate::config::GridParams {
+                size: crate::config::Size2([n, n]),
+                extent_m: crate::config::Extent2([n as f64, n as f64]),
+                ..Default::default()
+            },
+            ..Params::default()
+        };
+        let grid = field::synthesize(&params)?.grid;
+        let mapping = HeightMapping {
+            min_m: 0.0,
+            max_m: 1.0,
+        };
+        let field = FieldOut {
+            grid: &grid,
+            mapping: &mapping,
+            slopes: None,
+            about: "bench",
+        };
+        let mut options = ExportOptions::default();
+        options.tiles = tiles;
+        let path = dir.join(format!("bench-mesh-{n}.{ext}"));
+        let mut runs = Vec::new();
+        let mut bytes = 0u64;
+        for _ in 0..repeats {
+            let out = Output::plan(&path, &options, &grid.spec, true)?;
+            let files: Vec<_> = out.files.iter().map(|f| f.path.clone()).collect();
+            let t = Instant::now();
+            out.write(&field)?;
+            runs.push(t.elapsed());
+            bytes = 0;
+            for f in files {
+                bytes += std::fs::metadata(&f)?.len();
+                std::fs::remove_file(&f)?;
+            }
+        }
+        let d = median(runs);
+        println!(
+            "  {} {:>9.1} {:>9.1} {:>9.0}",
+            pad(name, 34),
+            d.as_secs_f64() * 1e3,
+            bytes as f64 / 1e6,
+            bytes as f64 / 1e6 / d.as_secs_f64()
+        );
+    }
+    Ok(())
+}
