@@ -282,3 +282,43 @@ fn the_fitted_method_pairs_every_component_with_tayfun_skewness_at_any_thread_co
     assert!(err.contains("nonlinear_fraction"), "{err}");
     assert!(common::names_in(dir.path()).is_empty(), "no file left");
 }
+
+/// `bench --second-order` times the linear sea, the pair sum and the fitted method at each
+/// size and states the two ratios to the linear field: both are numbers, and a second-order
+/// sea, which computes the linear one and its bound waves, is not faster than it.
+#[test]
+fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linear_sea() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::run_ok(
+        dir.path(),
+        &[
+            "bench",
+            "--sizes",
+            "64",
+            "--repeats",
+            "1",
+            "--second-order",
+            "--dir",
+            "bench",
+        ],
+    );
+    for row in [
+        "linear sea (PM 15 m/s, 2048 m)",
+        "second order, pair sum q = 0.99",
+        "second order, fitted, every wave",
+    ] {
+        assert!(out.contains(row), "no row {row:?}:\n{out}");
+    }
+    let line = out
+        .lines()
+        .find(|l| l.contains("second order ÷ linear field"))
+        .unwrap_or_else(|| panic!("no ratio line:\n{out}"));
+    let ratios: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter_map(|s| s.parse().ok())
+        .collect();
+    assert_eq!(ratios.len(), 2, "{line}");
+    for r in ratios {
+        assert!(r.is_finite() && r >= 1.0, "{line}");
+    }
+}

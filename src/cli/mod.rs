@@ -384,6 +384,11 @@ pub struct BenchArgs {
     /// of the same frames beside them when `blender` is on the PATH
     #[arg(long)]
     pub sequence: bool,
+    /// Also time second-order seas beside the linear one at each size (Pierson–Moskowitz
+    /// 15 m/s over 2048 m): the exact pair sum at q = 0.99 and the fitted method over
+    /// every component (up to 2048²), as ratios to the linear field
+    #[arg(long)]
+    pub second_order: bool,
     /// Worker threads [default: all cores]
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,

@@ -23,7 +23,7 @@ mod sequence;
 mod tables;
 
 use sequence::sequences;
-use tables::{exports, noise_bases, resampling_and_png_rows, trochoid_rows};
+use tables::{exports, noise_bases, resampling_and_png_rows, second_order_rows, trochoid_rows};
 
 fn median(mut v: Vec<Duration>) -> Duration {
     v.sort();
@@ -389,6 +389,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
         println!("{maps_cost}");
         trochoid_rows(n, repeats, bare)?;
         resampling_and_png_rows(&choppy, &args.dir, repeats, bare)?;
+        if args.second_order {
+            second_order_rows(n, repeats, bare)?;
+        }
     }
     noise_bases(repeats);
     if args.exports {

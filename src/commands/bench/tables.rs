@@ -268,3 +268,69 @@ pub(super) fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
     }
     Ok(())
 }
+
+/// The grid above which `bench --second-order` leaves the fitted method out: its padded
+/// double-precision fields take about 0.5 GB at 1024² and grow with the grid.
+const FITTED_MAX: usize = 2048;
+
+/// Second-order seas beside the linear one (`bench --second-order`): Pierson–Moskowitz,
+/// 15 m/s, Hasselmann spreading, n² over 2048 m (so the paired components do not grow
+/// with n), each the whole synthesis of one field (the fit included), as ratios to the
+/// linear field of the same grid and to the bare FFT.
+pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
+    use crate::config::layers::{Assignment, resolve};
+    use crate::field::dynamics::Extras;
+    use crate::pipeline::compute::synthesize_checked;
+    let sea = |extra: &[(&str, &str)]| -> Result<Params> {
+        let size = n.to_string();
+        let base = [
+            ("method", "fft"),
+            ("spectrum", "pierson-moskowitz"),
+            ("wind-speed", "15"),
+            ("spectrum.spreading", "hasselmann"),
+            ("extent", "2048"),
+            ("size", size.as_str()),
+        ];
+        let a: Vec<Assignment> = base
+            .iter()
+            .chain(extra)
+            .map(|(k, v)| Assignment::flag(k, v))
+            .collect();
+        Ok(resolve(None, &a)?)
+    };
+    let run = |p: &Params, r: usize| -> Result<Duration> {
+        synthesize_checked(p, Extras::default())?;
+        Ok(time(r, || {
+            synthesize_checked(p, Extras::default()).expect("checked above")
+        }))
+    };
+    let linear = run(&sea(&[])?, repeats)?;
+    let pairs = run(&sea(&[("nonlinear", "second-order")])?, repeats.min(3))?;
+    let fitted = if n <= FITTED_MAX {
+        let p = sea(&[
+            ("nonlinear", "second-order"),
+            ("spectrum.nonlinear_method", "fitted"),
+        ])?;
+        Some(run(&p, repeats.min(3))?)
+    } else {
+        None
+    };
+    print_row("linear sea (PM 15 m/s, 2048 m)", linear, bare, NAME_WIDTH);
+    print_row("second order, pair sum q = 0.99", pairs, bare, NAME_WIDTH);
+    let per = |d: Duration| d.as_secs_f64() / linear.as_secs_f64();
+    match fitted {
+        Some(f) => {
+            print_row("second order, fitted, every wave", f, bare, NAME_WIDTH);
+            println!(
+                "  second order ÷ linear field: pair sum {:.0}×, fitted {:.0}×",
+                per(pairs),
+                per(f)
+            );
+        }
+        None => println!(
+            "  second order ÷ linear field: pair sum {:.0}× (fitted left out above {FITTED_MAX}²: its padded fields need several GB)",
+            per(pairs)
+        ),
+    }
+    Ok(())
+}
