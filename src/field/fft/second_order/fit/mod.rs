@@ -51,16 +51,34 @@ const FIT_PAIRS: usize = 60_000;
 /// The polar sample of the spectrum the pairs are drawn from.
 const SAMPLE_RADII: usize = 96;
 const SAMPLE_ANGLES: usize = 72;
+/// The number of basis pairs (u ≤ v).
+pub const NB: usize = EXPONENTS.len() * (EXPONENTS.len() + 1) / 2;
 /// The pairs (u ≤ v) of basis exponents, in the order of the coefficients.
-pub fn basis_pairs() -> Vec<(usize, usize)> {
+pub const BASIS_PAIRS: [(usize, usize); NB] = basis_pairs();
+
+const fn basis_pairs() -> [(usize, usize); NB] {
     let r = EXPONENTS.len();
-    let mut v = Vec::new();
-    for a in 0..r {
-        for b in a..r {
-            v.push((a, b));
+    let mut v = [(0, 0); NB];
+    let (mut a, mut n) = (0, 0);
+    while a < r {
+        let mut b = a;
+        while b < r {
+            v[n] = (a, b);
+            n += 1;
+            b += 1;
         }
+        a += 1;
     }
     v
+}
+
+/// T = |q| tanh(|q| d) of an output wavevector of norm `qn` (|q| in deep water).
+#[inline]
+pub fn resonance_t(qn: f64, depth: Option<f64>) -> f64 {
+    match depth {
+        Some(d) => qn * tanh(qn * d),
+        None => qn,
+    }
 }
 
 /// The split of one kernel: K = ¼ [sep + num · G] (`g` the exact G, `ns` = num · G, or
@@ -87,10 +105,7 @@ pub fn split(a: &Component, b: &Component, sign: f64, depth: Option<f64>) -> Spl
     let dot = a.kx * kxb + a.ky * kyb;
     let (qx, qy) = (a.kx + kxb, a.ky + kyb);
     let qn = qx.hypot(qy);
-    let t = match depth {
-        Some(d) => qn * tanh(qn * d),
-        None => qn,
-    };
+    let t = resonance_t(qn, depth);
     let bb = (dot - a.r * b.r) / (a.s * sb);
     let aa = a.q / a.s + b.q / sb;
     let s = a.s + sb;
@@ -130,6 +145,15 @@ pub struct Box2 {
 }
 
 impl Box2 {
+    /// The resolved box of `setup`'s grid: below the Nyquist wavenumber on each axis.
+    pub fn of(setup: &super::SpectrumSetup) -> Self {
+        let (dkx, dky) = setup.dk();
+        Self {
+            kx_max: dkx * setup.spec.nx as f64 / 2.0,
+            ky_max: dky * setup.spec.ny as f64 / 2.0,
+        }
+    }
+
     #[inline]
     pub fn contains(&self, kx: f64, ky: f64) -> bool {
         kx.abs() < self.kx_max && ky.abs() < self.ky_max
@@ -246,13 +270,11 @@ fn hats(nodes: &[f64], qn: f64) -> [(usize, f64); 2] {
 
 /// The symmetric basis products ½[w_u(a)w_v(b) + w_v(a)w_u(b)] of two waves.
 #[inline]
-fn basis(a: &Component, b: &Component, s_ref: f64, out: &mut [f64]) {
+fn basis(a: &Component, b: &Component, s_ref: f64) -> [f64; NB] {
     let (xa, xb) = (a.s.abs() / s_ref, b.s.abs() / s_ref);
     let wa = EXPONENTS.map(|e| xa.powi(e));
     let wb = EXPONENTS.map(|e| xb.powi(e));
-    for (o, (u, v)) in out.iter_mut().zip(basis_pairs()) {
-        *o = 0.5 * (wa[u] * wb[v] + wa[v] * wb[u]);
-    }
+    BASIS_PAIRS.map(|(u, v)| 0.5 * (wa[u] * wb[v] + wa[v] * wb[u]))
 }
 
 impl KernelFit {
@@ -274,7 +296,7 @@ impl KernelFit {
         let nodes: Vec<f64> = (0..qn_count)
             .map(|i| q_max.sqrt() * i as f64 / (qn_count - 1) as f64)
             .collect();
-        let nb = basis_pairs().len();
+        let nb = NB;
         let empty = || vec![vec![0.0; nb]; qn_count * na];
         if waves.is_empty() {
             return Self {
@@ -291,27 +313,28 @@ impl KernelFit {
             .expect("non-empty");
         let s_ref = waves[ip].s;
         let sampler = Sampler::new(&weights);
-        let draw = |t: usize, salt: u64| {
-            let (u, v) = uniform(t as u64, salt);
-            (sampler.pick(u), sampler.pick(v))
-        };
-        let dim = qn_count * na * nb;
-        let mut coef = [empty(), empty()];
-        let mut phi = vec![0.0; nb];
-        for (term, sign) in [(0usize, 1.0f64), (1, -1.0)] {
-            let mut ata = vec![0.0; dim * dim];
-            let mut atb = vec![0.0; dim];
-            for t in 0..FIT_PAIRS {
-                let (i, j) = draw(t, 2 * term as u64);
+        // The drawn pairs of draw stream `salt` of two different waves whose sum (`sign`
+        // = 1) or difference (−1) falls on the grid, with the split of their kernel.
+        let (waves, sampler) = (&waves[..], &sampler);
+        let pairs = move |salt: u64, sign: f64| {
+            (0..FIT_PAIRS).filter_map(move |t| {
+                let (u, v) = uniform(t as u64, salt);
+                let (i, j) = (sampler.pick(u), sampler.pick(v));
                 if i == j {
-                    continue;
+                    return None;
                 }
                 let (a, b) = (&waves[i], &waves[j]);
                 let sp = split(a, b, sign, depth);
-                if !bounds.contains(sp.qx, sp.qy) {
-                    continue;
-                }
-                basis(a, b, s_ref, &mut phi);
+                bounds.contains(sp.qx, sp.qy).then_some((a, b, sp))
+            })
+        };
+        let dim = qn_count * na * nb;
+        let mut coef = [empty(), empty()];
+        for (term, sign) in [(0usize, 1.0f64), (1, -1.0)] {
+            let mut ata = vec![0.0; dim * dim];
+            let mut atb = vec![0.0; dim];
+            for (a, b, sp) in pairs(2 * term as u64, sign) {
+                let phi = basis(a, b, s_ref);
                 let h = hats2(&nodes, na, sp.qx, sp.qy);
                 let mut idx = [0usize; 64];
                 let mut val = [0.0f64; 64];
@@ -347,16 +370,7 @@ impl KernelFit {
         // The error estimate from draws independent of the fit's.
         let (mut err2, mut tot2) = (0.0, 0.0);
         for (term, sign) in [(0usize, 1.0f64), (1, -1.0)] {
-            for t in 0..FIT_PAIRS {
-                let (i, j) = draw(t, 2 * term as u64 + 1);
-                if i == j {
-                    continue;
-                }
-                let (a, b) = (&waves[i], &waves[j]);
-                let sp = split(a, b, sign, depth);
-                if !bounds.contains(sp.qx, sp.qy) {
-                    continue;
-                }
+            for (a, b, sp) in pairs(2 * term as u64 + 1, sign) {
                 let approx = fit.g(term, a, b, sp.qx, sp.qy) * sp.num;
                 let k = 0.25 * (sp.sep + sp.ns);
                 err2 += (0.25 * (sp.ns - approx)).powi(2);
@@ -373,17 +387,14 @@ impl KernelFit {
 
     /// G̃ of the sum (term 0) or difference (term 1) of two waves with output |q| = `qn`.
     pub fn g(&self, term: usize, a: &Component, b: &Component, qx: f64, qy: f64) -> f64 {
-        let nb = basis_pairs().len();
-        let mut phi = [0.0; 64];
-        basis(a, b, self.s_ref, &mut phi[..nb]);
+        let phi = basis(a, b, self.s_ref);
         let c = self.coefficients(term, qx, qy);
-        (0..nb).map(|l| c[l] * phi[l]).sum()
+        (0..NB).map(|l| c[l] * phi[l]).sum()
     }
 
-    /// c_uv(|q|) of a term, in the order of [`basis_pairs`].
-    pub fn coefficients(&self, term: usize, qx: f64, qy: f64) -> Vec<f64> {
-        let nb = basis_pairs().len();
-        let mut c = vec![0.0; nb];
+    /// c_uv(|q|) of a term, in the order of [`BASIS_PAIRS`].
+    pub fn coefficients(&self, term: usize, qx: f64, qy: f64) -> [f64; NB] {
+        let mut c = [0.0; NB];
         for (node, hw) in hats2(&self.nodes, self.na, qx, qy) {
             for (l, v) in c.iter_mut().enumerate() {
                 *v += hw * self.coef[term][node][l];

@@ -65,10 +65,7 @@ fn fitted_against_exact(sets: &[&str]) -> (f64, f64, f64) {
     let so = SecondOrder::new(&setup, 1.0);
     let depth = params.spectrum.depth_m;
     let (dkx, dky) = setup.dk();
-    let bounds = Box2 {
-        kx_max: dkx * (spec.nx / 2) as f64,
-        ky_max: dky * (spec.ny / 2) as f64,
-    };
+    let bounds = Box2::of(&setup);
     let kf = KernelFit::new(model.as_ref(), dispersion, bounds, (dkx, dky));
     let field = |z: Vec<C64>| {
         let mut half = HalfSpectrum {

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::fit::{Box2, EXPONENTS, KernelFit, basis_pairs};
+use super::fit::{BASIS_PAIRS, Box2, EXPONENTS, KernelFit, resonance_t};
 use super::{
     C64, Component, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -143,10 +143,7 @@ impl TransformBound {
         let all = SecondOrder::new(setup, 1.0);
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let (dkx, dky) = setup.dk();
-        let bounds = Box2 {
-            kx_max: dkx * nx as f64 / 2.0,
-            ky_max: dky * ny as f64 / 2.0,
-        };
+        let bounds = Box2::of(setup);
         let fit = KernelFit::new(setup.spectrum, setup.dispersion, bounds, (dkx, dky));
         let mut info = all.info.clone();
         let depth = all.depth;
@@ -255,7 +252,7 @@ impl TransformBound {
         }
         let mut groups: Vec<(Vec<C64>, bool)> = vec![(transform(sep), false)];
         // The basis pairs: B terms (multiplied by 2T c) and S·A terms (by c).
-        let pairs = basis_pairs();
+        let pairs = BASIS_PAIRS;
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         let mut b_acc = vec![vec![C64::new(0.0, 0.0); px * py]; pairs.len()];
         for &(f, sign) in types {
@@ -321,10 +318,7 @@ impl TransformBound {
                     };
                     let (qx, qy) = setup.wavevector(n, m);
                     let qn = qx.hypot(qy);
-                    let t = match depth {
-                        Some(d) => qn * crate::spectrum::spreading::tanh(qn * d),
-                        None => qn,
-                    };
+                    let t = resonance_t(qn, depth);
                     let cp = fit.coefficients(0, qx, qy);
                     let cm = fit.coefficients(1, qx, qy);
                     let zero_diff = n == 0 && m == 0;

@@ -6,6 +6,15 @@ use crate::field::fft::second_order::SecondOrder;
 use crate::field::fft::second_order::add_plane;
 use rustfft::num_complex::Complex32;
 
+/// The parameters of `KEY=VALUE` assignments over the defaults.
+fn params_of(sets: &[&str]) -> Params {
+    let a: Vec<Assignment> = sets
+        .iter()
+        .map(|s| Assignment::parse_set(s).unwrap())
+        .collect();
+    apply(Params::default(), &a).unwrap()
+}
+
 fn field_of(spec: crate::grid::GridSpec, fill: impl FnOnce(&mut HalfSpectrum)) -> Vec<f32> {
     let mut half = HalfSpectrum {
         nx: spec.nx,
@@ -35,11 +44,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
         if depth.is_some() {
             sets.push("depth=8");
         }
-        let a: Vec<Assignment> = sets
-            .iter()
-            .map(|s| Assignment::parse_set(s).unwrap())
-            .collect();
-        let params = apply(Params::default(), &a).unwrap();
+        let params = params_of(&sets);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         for t in [0.0, 3.7] {
@@ -53,10 +58,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
             };
             let so = SecondOrder::new(&setup, 1.0);
             let (dkx, dky) = setup.dk();
-            let bounds = Box2 {
-                kx_max: dkx * (spec.nx / 2) as f64,
-                ky_max: dky * (spec.ny / 2) as f64,
-            };
+            let bounds = Box2::of(&setup);
             let kf = KernelFit::new(model.as_ref(), dispersion, bounds, (dkx, dky));
             let pairs = so.bound_plane_by(
                 &setup,
@@ -94,11 +96,7 @@ fn transform_timing() {
             &size,
             "extent=2048",
         ];
-        let a: Vec<Assignment> = sets
-            .iter()
-            .map(|s| Assignment::parse_set(s).unwrap())
-            .collect();
-        let params = apply(Params::default(), &a).unwrap();
+        let params = params_of(&sets);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         let setup = SpectrumSetup {
@@ -116,10 +114,7 @@ fn transform_timing() {
         let t1 = std::time::Instant::now();
         let so = SecondOrder::new(&setup, 1.0);
         let (dkx, dky) = setup.dk();
-        let bounds = Box2 {
-            kx_max: dkx * (spec.nx / 2) as f64,
-            ky_max: dky * (spec.ny / 2) as f64,
-        };
+        let bounds = Box2::of(&setup);
         let kf = KernelFit::new(model.as_ref(), dispersion, bounds, (dkx, dky));
         let comps = so.components().len();
         let tb = TransformBound::new(so.components().to_vec(), spec.nx, spec.ny, None, kf);
