@@ -30,7 +30,7 @@ struct Ready {
 /// How the bound waves are evaluated (`spectrum.nonlinear_method`).
 enum Bound {
     /// The exact pair sum of the strongest components.
-    Pairs(SecondOrder),
+    Pairs(Box<SecondOrder>),
     /// Every component, fitted kernels, by transforms (with what the sidecar records).
     Fitted(Box<TransformBound>, SecondOrderInfo),
 }
@@ -91,7 +91,7 @@ impl HeightMethod for FftSea {
             match s.nonlinear_method {
                 NonlinearMethod::Pairs => {
                     let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
-                    Bound::Pairs(SecondOrder::new(&setup, q))
+                    Bound::Pairs(Box::new(SecondOrder::new(&setup, q)))
                 }
                 NonlinearMethod::Fitted => {
                     let (tb, info) = TransformBound::for_setup(&setup);

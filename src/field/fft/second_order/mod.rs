@@ -207,6 +207,8 @@ pub struct SecondOrder {
     depth: Option<f64>,
     nx: usize,
     ny: usize,
+    /// The kernel inputs of `comps` as columns (the pair sum's line kernels).
+    columns: pairs::Columns,
     pub info: SecondOrderInfo,
 }
 
@@ -281,43 +283,38 @@ impl SecondOrder {
             count += 1;
         }
         all.truncate(count);
-        all.sort_by_key(|c| (c.n, c.m));
-        let mut lines = vec![0..0; 2 * nx + 1];
-        let mut occupied = Vec::new();
-        let mut start = 0;
-        while start < all.len() {
-            let n = all[start].n;
-            let end = start + all[start..].iter().take_while(|c| c.n == n).count();
-            lines[(n + nx as i64) as usize] = start..end;
-            occupied.push(n);
-            start = end;
-        }
-        let c = all.len() as u64;
         let info = SecondOrderInfo {
             fraction,
-            components: all.len(),
             components_available: available,
             variance_fraction_kept: if total > 0.0 { kept / total } else { 0.0 },
-            pairs: c * (c + 1) / 2,
             ..SecondOrderInfo::default()
         };
-        Self {
-            comps: all,
-            lines,
-            occupied,
-            depth,
-            nx,
-            ny,
-            info,
-        }
+        Self::of(all, nx, ny, depth, info)
     }
 
     /// A sea of the given components (tests, the single-pair checks), at `depth`.
     pub fn from_components(
+        comps: Vec<Component>,
+        nx: usize,
+        ny: usize,
+        depth: Option<f64>,
+    ) -> Self {
+        let info = SecondOrderInfo {
+            fraction: 1.0,
+            components_available: comps.len(),
+            variance_fraction_kept: 1.0,
+            ..SecondOrderInfo::default()
+        };
+        Self::of(comps, nx, ny, depth, info)
+    }
+
+    /// The paired components `comps` (any order), by kx line; `info` with the counts.
+    fn of(
         mut comps: Vec<Component>,
         nx: usize,
         ny: usize,
         depth: Option<f64>,
+        info: SecondOrderInfo,
     ) -> Self {
         comps.sort_by_key(|c| (c.n, c.m));
         let mut lines = vec![0..0; 2 * nx + 1];
@@ -332,14 +329,12 @@ impl SecondOrder {
         }
         let c = comps.len() as u64;
         let info = SecondOrderInfo {
-            fraction: 1.0,
             components: comps.len(),
-            components_available: comps.len(),
-            variance_fraction_kept: 1.0,
             pairs: c * (c + 1) / 2,
-            ..SecondOrderInfo::default()
+            ..info
         };
         Self {
+            columns: pairs::Columns::of(&comps, depth),
             comps,
             lines,
             occupied,
@@ -374,101 +369,6 @@ impl SecondOrder {
                 C64::new(2.0 * c.rho * co, 2.0 * c.rho * s)
             })
             .collect()
-    }
-
-    /// The full-plane Z of the bound waves at `setup`'s time (nx lines of ny, both in FFT
-    /// order), and the sum and difference pairs kept on the grid.
-    pub fn bound_plane(&self, setup: &SpectrumSetup) -> (Vec<C64>, u64, u64) {
-        let depth = self.depth;
-        self.bound_plane_by(
-            setup,
-            |a, b, same| {
-                if same {
-                    self_kernels(a, depth).0
-                } else {
-                    kernel_plus(a, b, depth)
-                }
-            },
-            |a, b| kernel_minus(a, b, depth),
-        )
-    }
-
-    /// [`Self::bound_plane`] with the kernels `plus(a, b, a is b)` and `minus(a, b)` of
-    /// different waves (the set-down of one wave stays exact).
-    pub fn bound_plane_by<P, M>(
-        &self,
-        setup: &SpectrumSetup,
-        plus: P,
-        minus: M,
-    ) -> (Vec<C64>, u64, u64)
-    where
-        P: Fn(&Component, &Component, bool) -> f64 + Sync,
-        M: Fn(&Component, &Component) -> f64 + Sync,
-    {
-        let (nx, ny) = (self.nx, self.ny);
-        let b = self.amplitudes(setup);
-        let c = &self.comps;
-        let mut z = vec![C64::new(0.0, 0.0); nx * ny];
-        let depth = self.depth;
-        let counts: Vec<(u64, u64)> = z
-            .par_chunks_mut(ny)
-            .enumerate()
-            .map(|(row, zline)| {
-                let nq = signed_index(row, nx);
-                if !on_grid(nq, nx) {
-                    return (0, 0);
-                }
-                let (mut sums, mut diffs) = (0u64, 0u64);
-                let mut add = |m: i64, v: C64| -> bool {
-                    if on_grid(m, ny) {
-                        zline[m.rem_euclid(ny as i64) as usize] += v;
-                        true
-                    } else {
-                        false
-                    }
-                };
-                // Sum terms: lines a ≤ b with a + b = nq; within a line, i ≤ j.
-                for &na in &self.occupied {
-                    let nb = nq - na;
-                    if nb < na {
-                        break;
-                    }
-                    let lb = self.line(nb);
-                    for i in self.line(na) {
-                        let js = if na == nb { i..lb.end } else { lb.clone() };
-                        for j in js {
-                            let f = if i == j { 1.0 } else { 2.0 };
-                            let kp = plus(&c[i], &c[j], i == j);
-                            if add(c[i].m + c[j].m, b[i] * b[j] * (f * kp)) {
-                                sums += 1;
-                            }
-                        }
-                    }
-                }
-                // Difference terms, oriented so that nq = n_a − n_b ≥ 0; on nq = 0, i ≤ j.
-                if nq >= 0 {
-                    for &na in &self.occupied {
-                        let lb = self.line(na - nq);
-                        for i in self.line(na) {
-                            let js = if nq == 0 { i..lb.end } else { lb.clone() };
-                            for j in js {
-                                let (km, f) = if i == j {
-                                    (self_kernels(&c[i], depth).1, 1.0)
-                                } else {
-                                    (minus(&c[i], &c[j]), 2.0)
-                                };
-                                if add(c[i].m - c[j].m, b[i] * b[j].conj() * (f * km)) {
-                                    diffs += 1;
-                                }
-                            }
-                        }
-                    }
-                }
-                (sums, diffs)
-            })
-            .collect();
-        let (s, d) = counts.iter().fold((0, 0), |(s, d), &(a, b)| (s + a, d + b));
-        (z, s, d)
     }
 
     /// Adds the bound waves at `setup`'s time to the linear half spectrum `half`, and
@@ -511,6 +411,7 @@ pub fn add_plane(z: &[C64], half: &mut HalfSpectrum) {
 }
 
 pub mod fit;
+mod pairs;
 pub mod transform;
 
 #[cfg(test)]
