@@ -4,8 +4,7 @@
 //! wavevector. Exactly the pair sum of K̃ (up to rounding), at the cost of a few dozen
 //! transforms of a grid padded by 3/2 per axis, so that no sum or difference of two
 //! resolved wavevectors wraps onto a kept output. The non-default
-//! `spectrum.nonlinear_method = "fitted"`: the fit's error is above what a default needs
-//! (see docs/methods.md).
+//! `spectrum.nonlinear_method = "fitted"` (see docs/methods.md for its error and cost).
 //!
 //! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over every component (b_i = a_i e^{i(φ_i − ω_i t)})
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
@@ -17,7 +16,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::fit::{BASIS_PAIRS, Box2, EXPONENTS, KernelFit, resonance_t};
+use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, resonance_t};
 use super::{
     C64, Component, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -109,6 +108,17 @@ impl Factor {
     }
 }
 
+/// δ^{2m} = (x_i − x_j)^{2m} = Σ_a w_a x_i^a x_j^{2m−a}: the terms (a, w_a).
+fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
+    let n = 2 * m;
+    let mut binom = 1.0;
+    (0..=n).map(move |a| {
+        let w = if a % 2 == 0 { binom } else { -binom };
+        binom = binom * (n - a) as f64 / (a + 1) as f64;
+        (a, w)
+    })
+}
+
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
     comps: Vec<Component>,
@@ -170,6 +180,13 @@ impl TransformBound {
         data
     }
 
+    /// The fields of f·(|s|/s_p)^a, a = 0 ..= 2·[`DIFF_POWERS`].
+    fn powers(&self, b: &[C64], f: Factor) -> Vec<Vec<C64>> {
+        (0..=2 * DIFF_POWERS as i32)
+            .map(|a| self.field(b, f, Some(a)))
+            .collect()
+    }
+
     /// The unordered pairs (self-pairs included) whose sum, and whose difference, falls
     /// off the grid: the pair counts at every output, from the transform of the squared
     /// occupancy field (the outputs the transforms leave out).
@@ -226,13 +243,21 @@ impl TransformBound {
             .collect();
         let finite = self.depth.is_some();
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
-        let accumulate = |acc: &mut [C64], f: &[C64], g: &[C64], sum_sign: f64, diff_sign: f64| {
+        let accumulate = |acc: &mut [C64], f: &[C64], g: &[C64], sum_w: f64, diff_w: f64| {
             acc.par_iter_mut()
                 .zip(f.par_iter().zip(g.par_iter()))
                 .for_each(|(a, (x, y))| {
-                    let s = (x * y).re;
-                    let d = (x * y.conj()).re;
-                    *a += C64::new(sum_sign * s, diff_sign * d);
+                    let s = if sum_w != 0.0 {
+                        sum_w * (x * y).re
+                    } else {
+                        0.0
+                    };
+                    let d = if diff_w != 0.0 {
+                        diff_w * (x * y.conj()).re
+                    } else {
+                        0.0
+                    };
+                    *a += C64::new(s, d);
                 });
         };
         let transform = |mut acc: Vec<C64>| {
@@ -251,22 +276,30 @@ impl TransformBound {
             }
         }
         let mut groups: Vec<(Vec<C64>, bool)> = vec![(transform(sep), false)];
-        // The basis pairs: B terms (multiplied by 2T c) and S·A terms (by c).
+        // Group l holds the sum term's basis pair l (re) and the difference term's power
+        // m = l (im): the B terms (multiplied by 2T c) and the S·A terms (by c).
         let pairs = BASIS_PAIRS;
+        let zeros = || vec![vec![C64::new(0.0, 0.0); px * py]; pairs.len()];
+        let mut b_acc = zeros();
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
-        let mut b_acc = vec![vec![C64::new(0.0, 0.0); px * py]; pairs.len()];
         for &(f, sign) in types {
             let fields: Vec<Vec<C64>> = EXPONENTS
                 .iter()
                 .map(|&e| self.field(&b, f, Some(e)))
                 .collect();
             for (acc, &(u, v)) in b_acc.iter_mut().zip(&pairs) {
-                accumulate(acc, &fields[u], &fields[v], sign, 1.0);
+                accumulate(acc, &fields[u], &fields[v], sign, 0.0);
+            }
+            let powers = self.powers(&b, f);
+            for (m, acc) in b_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
+                for (a, w) in expansion(m) {
+                    accumulate(acc, &powers[a], &powers[2 * m - a], 0.0, w);
+                }
             }
         }
         let mut sa_acc = Vec::new();
         if finite {
-            sa_acc = vec![vec![C64::new(0.0, 0.0); px * py]; pairs.len()];
+            sa_acc = zeros();
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 let ff: Vec<Vec<C64>> = EXPONENTS
                     .iter()
@@ -277,8 +310,17 @@ impl TransformBound {
                     .map(|&e| self.field(&b, g, Some(e)))
                     .collect();
                 for (acc, &(u, v)) in sa_acc.iter_mut().zip(&pairs) {
-                    accumulate(acc, &ff[u], &gg[v], 1.0, sign);
-                    accumulate(acc, &ff[v], &gg[u], 1.0, sign);
+                    accumulate(acc, &ff[u], &gg[v], 1.0, 0.0);
+                    accumulate(acc, &ff[v], &gg[u], 1.0, 0.0);
+                }
+                drop((ff, gg));
+                // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
+                // mirror (the expansion is symmetric in a ↔ 2m − a).
+                let (pf, pg) = (self.powers(&b, f), self.powers(&b, g));
+                for (m, acc) in sa_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
+                    for (a, w) in expansion(m) {
+                        accumulate(acc, &pf[a], &pg[2 * m - a], 0.0, 2.0 * sign * w);
+                    }
                 }
             }
         }
@@ -320,7 +362,14 @@ impl TransformBound {
                     let qn = qx.hypot(qy);
                     let t = resonance_t(qn, depth);
                     let cp = fit.coefficients(0, qx, qy);
-                    let cm = fit.coefficients(1, qx, qy);
+                    // The difference powers: c_m (s_p² / T)^m / T on δ^{2m} in units of s_p.
+                    let mut cm = fit.coefficients(1, qx, qy);
+                    // (At q = 0 the set-down replaces the difference terms.)
+                    let mut scale = 1.0 / t;
+                    for c in cm.iter_mut() {
+                        *c = if t > 0.0 { *c * scale } else { 0.0 };
+                        scale *= fit.s_ref * fit.s_ref / t;
+                    }
                     let zero_diff = n == 0 && m == 0;
                     let mut h = C64::new(0.0, 0.0);
                     for (g, (f, weighted)) in groups.iter().enumerate() {

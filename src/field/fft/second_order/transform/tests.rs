@@ -80,6 +80,118 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
     }
 }
 
+/// The bound waves of a physical sea, every component, by the fitted method's transforms
+/// and by the exact pair sum: the relative rms and max errors (to the exact rms) and the
+/// fit's own estimate.
+fn fitted_against_the_pair_sum(sets: &[&str]) -> (f64, f64, f64) {
+    let params = params_of(sets);
+    let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+    let spec = params.grid_spec();
+    let setup = SpectrumSetup {
+        spec,
+        spectrum: model.as_ref(),
+        dispersion,
+        seed: 7,
+        time_s: 0.0,
+        loop_period_s: None,
+    };
+    let exact = SecondOrder::new(&setup, 1.0);
+    let exact = field_of(spec, |h| add_plane(&exact.bound_plane(&setup).0, h));
+    let (tb, info) = TransformBound::for_setup(&setup);
+    let fitted = field_of(spec, |h| tb.add_to(&setup, h));
+    let n = exact.len() as f64;
+    let rms = (exact.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / n).sqrt();
+    let d: Vec<f64> = exact
+        .iter()
+        .zip(&fitted)
+        .map(|(&a, &b)| f64::from(a) - f64::from(b))
+        .collect();
+    let drms = (d.iter().map(|v| v * v).sum::<f64>() / n).sqrt();
+    let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let estimate = info
+        .estimated_rel_rms_error
+        .expect("the fitted method's estimate");
+    (drms / rms, dmax / rms, estimate)
+}
+
+#[test]
+fn the_fitted_method_against_the_pair_sum_of_every_component() {
+    // 128² over 1024 m, 15 m/s, every component. In deep water, broad and narrow, short-
+    // and long-crested, the bound waves are within 1 % rms and 5 % max of the pair sum's
+    // (of its rms). At 10 m and 19 m (0.05 and 0.1 λp) the sum term's near-resonance is not
+    // resolved: FINITE_RMS holds today's errors with a margin. The estimate the sidecar records must
+    // be within ESTIMATE_BAND of the truth.
+    const DEEP_RMS: f64 = 0.01;
+    const DEEP_MAX: f64 = 0.05;
+    const FINITE_RMS: f64 = 0.04;
+    const ESTIMATE_BAND: (f64, f64) = (0.5, 2.0);
+    let base = ["method=fft", "wind-speed=15", "size=128", "extent=1024"];
+    let cases: [(&[&str], bool); 5] = [
+        (
+            &[
+                "spectrum=pierson-moskowitz",
+                "spectrum.spreading=hasselmann",
+            ],
+            true,
+        ),
+        (
+            &[
+                "spectrum=jonswap",
+                "gamma=7",
+                "fetch-km=100",
+                "spectrum.spreading=mitsuyasu",
+            ],
+            true,
+        ),
+        (
+            &[
+                "spectrum=jonswap",
+                "gamma=7",
+                "fetch-km=100",
+                "spectrum.spreading=mitsuyasu",
+                "spectrum.swell=8",
+            ],
+            true,
+        ),
+        (
+            &[
+                "spectrum=pierson-moskowitz",
+                "spectrum.spreading=hasselmann",
+                "depth=10",
+            ],
+            false,
+        ),
+        (
+            &[
+                "spectrum=pierson-moskowitz",
+                "spectrum.spreading=hasselmann",
+                "depth=19",
+            ],
+            false,
+        ),
+    ];
+    for (case, deep) in cases {
+        let sets: Vec<&str> = base.iter().chain(case).copied().collect();
+        let (rms, max, estimate) = fitted_against_the_pair_sum(&sets);
+        eprintln!(
+            "{case:?}: rms error {rms:.4}, max {max:.4} (of the rms), estimate {estimate:.4}"
+        );
+        if deep {
+            assert!(
+                rms <= DEEP_RMS && max <= DEEP_MAX,
+                "{case:?}: rms {rms}, max {max}"
+            );
+        } else {
+            assert!(rms <= FINITE_RMS, "{case:?}: rms error {rms}");
+        }
+        let ratio = estimate / rms;
+        assert!(
+            ratio >= ESTIMATE_BAND.0 && ratio <= ESTIMATE_BAND.1,
+            "{case:?}: estimate {estimate} vs {rms}"
+        );
+    }
+}
+
 #[test]
 #[ignore = "a measurement, not a check: \
             cargo test --release --lib transform_timing -- --ignored --nocapture"]
