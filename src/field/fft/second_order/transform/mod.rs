@@ -119,6 +119,23 @@ fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
     })
 }
 
+/// Adds `scale`·Σ_a w_a Re(f_a conj g_{2m−a}) (the terms of [`expansion`]) to the
+/// difference part (im) of `acc`, in one pass.
+fn add_power(acc: &mut [C64], f: &[Vec<C64>], g: &[Vec<C64>], m: usize, scale: f64) {
+    const CHUNK: usize = 4096;
+    let terms: Vec<(usize, f64)> = expansion(m).collect();
+    acc.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+        let at = c * CHUNK;
+        for (x, o) in out.iter_mut().enumerate() {
+            let mut d = 0.0;
+            for &(a, w) in &terms {
+                d += w * (f[a][at + x] * g[2 * m - a][at + x].conj()).re;
+            }
+            o.im += scale * d;
+        }
+    });
+}
+
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
     comps: Vec<Component>,
@@ -292,9 +309,7 @@ impl TransformBound {
             }
             let powers = self.powers(&b, f);
             for (m, acc) in b_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                for (a, w) in expansion(m) {
-                    accumulate(acc, &powers[a], &powers[2 * m - a], 0.0, w);
-                }
+                add_power(acc, &powers, &powers, m, 1.0);
             }
         }
         let mut sa_acc = Vec::new();
@@ -318,9 +333,7 @@ impl TransformBound {
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
                 let (pf, pg) = (self.powers(&b, f), self.powers(&b, g));
                 for (m, acc) in sa_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                    for (a, w) in expansion(m) {
-                        accumulate(acc, &pf[a], &pg[2 * m - a], 0.0, 2.0 * sign * w);
-                    }
+                    add_power(acc, &pf, &pg, m, 2.0 * sign);
                 }
             }
         }
