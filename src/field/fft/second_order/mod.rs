@@ -262,27 +262,34 @@ impl SecondOrder {
             per_line.lock().expect("no panics while holding the lock")[n as usize] = out;
             0.0
         });
-        let mut all: Vec<Component> = per_line
+        let all: Vec<Component> = per_line
             .into_inner()
             .expect("no panics while holding the lock")
             .into_iter()
             .flatten()
             .collect();
         let available = all.len();
-        all.sort_by(|a, b| b.p.total_cmp(&a.p).then((a.n, a.m).cmp(&(b.n, b.m))));
-        let total: f64 = all.iter().map(|c| c.p).sum();
+        // The ranking (by E|h̃0|² descending, ties by index) of light keys, in parallel: a
+        // total order, so the same whatever the sort or the threads.
+        let mut keys: Vec<(f64, i64, i64, usize)> = all
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (c.p, c.n, c.m, i))
+            .collect();
+        keys.par_sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+        let total: f64 = keys.iter().map(|k| k.0).sum();
         let mut kept = 0.0;
         let mut count = 0;
-        for c in &all {
+        for k in &keys {
             // q = 1 keeps every component (the sum of the largest reaches the total in
             // floating point before the smallest are added).
             if fraction < 1.0 && kept >= fraction * total {
                 break;
             }
-            kept += c.p;
+            kept += k.0;
             count += 1;
         }
-        all.truncate(count);
+        let all: Vec<Component> = keys[..count].iter().map(|k| all[k.3]).collect();
         let info = SecondOrderInfo {
             fraction,
             components_available: available,

@@ -60,13 +60,14 @@ impl Columns {
     }
 
     /// The single wave i as the scalars the line kernels take.
-    #[inline]
+    #[inline(always)]
     fn one(&self, i: usize) -> [f64; 6] {
         [
             self.kx[i], self.ky[i], self.kk[i], self.r[i], self.s[i], self.q[i],
         ]
     }
 
+    #[inline(always)]
     fn run(&self, js: Range<usize>) -> [&[f64]; 6] {
         [
             &self.kx[js.clone()],
