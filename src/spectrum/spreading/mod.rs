@@ -150,22 +150,27 @@ pub(crate) fn half_one_plus(c: f64) -> f64 {
 #[inline]
 pub(crate) fn tanh(x: f64) -> f64 {
     if x < 0.1 {
-        // Taylor series to x¹⁵ (the next term is below 1e-20 relative).
-        let x2 = x * x;
-        let p = -929_569.0 / 638_512_875.0;
-        let p = 21_844.0 / 6_081_075.0 + x2 * p;
-        let p = -1_382.0 / 155_925.0 + x2 * p;
-        let p = 62.0 / 2_835.0 + x2 * p;
-        let p = -17.0 / 315.0 + x2 * p;
-        let p = 2.0 / 15.0 + x2 * p;
-        let p = -1.0 / 3.0 + x2 * p;
-        x + x * x2 * p
+        tanh_series(x)
     } else if x > 20.0 {
         1.0
     } else {
         let e = exp(-2.0 * x);
         (1.0 - e) / (1.0 + e)
     }
+}
+
+/// The Taylor series of tanh to x¹⁵ (the next term is below 1e-20 relative for x < 0.1).
+#[inline(always)]
+pub(crate) fn tanh_series(x: f64) -> f64 {
+    let x2 = x * x;
+    let p = -929_569.0 / 638_512_875.0;
+    let p = 21_844.0 / 6_081_075.0 + x2 * p;
+    let p = -1_382.0 / 155_925.0 + x2 * p;
+    let p = 62.0 / 2_835.0 + x2 * p;
+    let p = -17.0 / 315.0 + x2 * p;
+    let p = 2.0 / 15.0 + x2 * p;
+    let p = -1.0 / 3.0 + x2 * p;
+    x + x * x2 * p
 }
 
 /// sech² x = 4e/(1 + e)², e = exp(−2|x|).

@@ -18,6 +18,7 @@ use super::{C64, Component, SecondOrder, SpectrumSetup, on_grid, self_kernels};
 use crate::fastmath;
 use crate::grid::signed_index;
 use crate::simd::{Isa, multiversion};
+use crate::spectrum::spreading::tanh_series;
 
 /// The kernels of one component (index i) against a run of partners js on one kx line:
 /// `out[j − js.start]`. `plus` includes j = i (K⁺_ii); `minus` leaves the value at
@@ -83,12 +84,12 @@ impl Columns {
 impl LineKernels for Columns {
     fn plus(&self, i: usize, js: Range<usize>, out: &mut [f64]) {
         let (a, b) = (self.one(i), self.run(js));
-        plus_line(self.isa, a, b, self.deep, self.depth, out);
+        kernel_line(self.isa, a, b, 1.0, self.deep, self.depth, out);
     }
 
     fn minus(&self, i: usize, js: Range<usize>, out: &mut [f64]) {
         let (a, b) = (self.one(i), self.run(js));
-        minus_line(self.isa, a, b, self.deep, self.depth, out);
+        kernel_line(self.isa, a, b, -1.0, self.deep, self.depth, out);
     }
 }
 
@@ -96,15 +97,7 @@ impl LineKernels for Columns {
 /// three ranges computed and one chosen), so it vectorizes.
 #[inline(always)]
 fn tanh_nonnegative(x: f64) -> f64 {
-    let x2 = x * x;
-    let p = -929_569.0 / 638_512_875.0;
-    let p = 21_844.0 / 6_081_075.0 + x2 * p;
-    let p = -1_382.0 / 155_925.0 + x2 * p;
-    let p = 62.0 / 2_835.0 + x2 * p;
-    let p = -17.0 / 315.0 + x2 * p;
-    let p = 2.0 / 15.0 + x2 * p;
-    let p = -1.0 / 3.0 + x2 * p;
-    let series = x + x * x2 * p;
+    let series = tanh_series(x);
     // −2x lies in the fast range of exp wherever this branch is chosen (0.1 ≤ x ≤ 20).
     let e = fastmath::exp_fast(-2.0 * x);
     let mid = (1.0 - e) / (1.0 + e);
@@ -129,46 +122,26 @@ fn resonance(k: f64, deep: bool, depth: f64) -> f64 {
 
 multiversion! {
     @on
-    /// `out[j] = kernel_plus(a, b_j)` bit for bit (a and b as [`Columns`] hold them).
-    fn plus_line(isa: Isa, a: [f64; 6], b: [&[f64]; 6], deep: bool, depth: f64, out: &mut [f64]) {
+    /// `out[j] = kernel_plus(a, b_j)` bit for bit (a and b as [`Columns`] hold them) with
+    /// `sign` = 1, and `kernel_minus(a, b_j)` with −1: K⁻ is K⁺ of the partner
+    /// (−k_j, −s_j), and negating those negates every intermediate exactly.
+    fn kernel_line(isa: Isa, a: [f64; 6], b: [&[f64]; 6], sign: f64, deep: bool, depth: f64, out: &mut [f64]) {
         let [ax, ay, akk, ar, as_, aq] = a;
         let [bx, by, bkk, br, bs, bq] = b;
         let n = out.len();
         let (bx, by, bkk, br, bs, bq) = (&bx[..n], &by[..n], &bkk[..n], &br[..n], &bs[..n], &bq[..n]);
         for j in 0..n {
-            let dot = ax * bx[j] + ay * by[j];
+            let (bxj, byj, bsj) = (sign * bx[j], sign * by[j], sign * bs[j]);
+            let dot = ax * bxj + ay * byj;
             let kp = (akk + bkk[j] + 2.0 * dot).max(0.0).sqrt();
             let tp = resonance(kp, deep, depth);
             let rr = ar * br[j];
-            let sp = as_ + bs[j];
+            let sp = as_ + bsj;
             let den = sp * sp - tp;
-            let num = sp * (as_ * bq[j] + bs[j] * aq) + 2.0 * sp * sp * (dot - rr);
+            let num = sp * (as_ * bq[j] + bsj * aq) + 2.0 * sp * sp * (dot - rr);
             let d = num / den;
             let d = if den != 0.0 { d } else { 0.0 };
-            out[j] = 0.25 * ((d - (dot - rr)) / (as_ * bs[j]) + ar + br[j]);
-        }
-    }
-}
-
-multiversion! {
-    @on
-    /// `out[j] = kernel_minus(a, b_j)` bit for bit.
-    fn minus_line(isa: Isa, a: [f64; 6], b: [&[f64]; 6], deep: bool, depth: f64, out: &mut [f64]) {
-        let [ax, ay, akk, ar, as_, aq] = a;
-        let [bx, by, bkk, br, bs, bq] = b;
-        let n = out.len();
-        let (bx, by, bkk, br, bs, bq) = (&bx[..n], &by[..n], &bkk[..n], &br[..n], &bs[..n], &bq[..n]);
-        for j in 0..n {
-            let dot = ax * bx[j] + ay * by[j];
-            let km = (akk + bkk[j] - 2.0 * dot).max(0.0).sqrt();
-            let tm = resonance(km, deep, depth);
-            let rr = ar * br[j];
-            let sm = as_ - bs[j];
-            let den = sm * sm - tm;
-            let num = sm * (bs[j] * aq - as_ * bq[j]) + 2.0 * sm * sm * (dot + rr);
-            let d = num / den;
-            let d = if den != 0.0 { d } else { 0.0 };
-            out[j] = 0.25 * ((d - (dot + rr)) / (as_ * bs[j]) + ar + br[j]);
+            out[j] = 0.25 * ((d - (dot - rr)) / (as_ * bsj) + ar + br[j]);
         }
     }
 }

@@ -15,6 +15,24 @@ fn params_of(sets: &[&str]) -> Params {
     apply(Params::default(), &a).unwrap()
 }
 
+/// The setup of one frame of `spectrum` on `spec` (no loop).
+fn setup_at<'a>(
+    spec: crate::grid::GridSpec,
+    spectrum: &'a dyn crate::spectrum::Spectrum,
+    dispersion: crate::spectrum::Dispersion,
+    seed: u64,
+    time_s: f64,
+) -> SpectrumSetup<'a> {
+    SpectrumSetup {
+        spec,
+        spectrum,
+        dispersion,
+        seed,
+        time_s,
+        loop_period_s: None,
+    }
+}
+
 fn field_of(spec: crate::grid::GridSpec, fill: impl FnOnce(&mut HalfSpectrum)) -> Vec<f32> {
     let mut half = HalfSpectrum {
         nx: spec.nx,
@@ -48,14 +66,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         for t in [0.0, 3.7] {
-            let setup = SpectrumSetup {
-                spec,
-                spectrum: model.as_ref(),
-                dispersion,
-                seed: 3,
-                time_s: t,
-                loop_period_s: None,
-            };
+            let setup = setup_at(spec, model.as_ref(), dispersion, 3, t);
             let so = SecondOrder::new(&setup, 1.0);
             let (dkx, dky) = setup.dk();
             let bounds = Box2::of(&setup);
@@ -87,14 +98,7 @@ fn fitted_against_the_pair_sum(sets: &[&str]) -> (f64, f64, f64) {
     let params = params_of(sets);
     let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
     let spec = params.grid_spec();
-    let setup = SpectrumSetup {
-        spec,
-        spectrum: model.as_ref(),
-        dispersion,
-        seed: 7,
-        time_s: 0.0,
-        loop_period_s: None,
-    };
+    let setup = setup_at(spec, model.as_ref(), dispersion, 7, 0.0);
     let exact = SecondOrder::new(&setup, 1.0);
     let exact = field_of(spec, |h| add_plane(&exact.bound_plane(&setup).0, h));
     let (tb, info) = TransformBound::for_setup(&setup);
@@ -211,14 +215,7 @@ fn transform_timing() {
         let params = params_of(&sets);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
-        let setup = SpectrumSetup {
-            spec,
-            spectrum: model.as_ref(),
-            dispersion,
-            seed: 3,
-            time_s: 0.0,
-            loop_period_s: None,
-        };
+        let setup = setup_at(spec, model.as_ref(), dispersion, 3, 0.0);
         let t0 = std::time::Instant::now();
         let half = crate::field::fft::synthesize_spectrum(&setup);
         let _ = InverseFft2::new(spec.nx, spec.ny).process(half);
