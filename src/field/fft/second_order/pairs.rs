@@ -42,6 +42,8 @@ pub struct Columns {
     r: Vec<f64>,
     s: Vec<f64>,
     q: Vec<f64>,
+    /// The ky index m (the outputs' index, not a kernel input).
+    m: Vec<i64>,
 }
 
 impl Columns {
@@ -57,6 +59,7 @@ impl Columns {
             r: col(|c| c.r),
             s: col(|c| c.s),
             q: col(|c| c.q),
+            m: comps.iter().map(|c| c.m).collect(),
         }
     }
 
@@ -213,7 +216,7 @@ impl SecondOrder {
         let (nx, ny) = (self.nx, self.ny);
         let b = self.amplitudes(setup);
         let (bre, bim): (Vec<f64>, Vec<f64>) = b.iter().map(|v| (v.re, v.im)).unzip();
-        let ms: Vec<i64> = self.comps.iter().map(|c| c.m).collect();
+        let ms = &self.columns.m;
         let c = &self.comps;
         let mut z = vec![C64::new(0.0, 0.0); nx * ny];
         let depth = self.depth;
@@ -282,6 +285,30 @@ impl SecondOrder {
                     }
                     (last - first) as u64
                 };
+                // The pairs of wave i with partners js: the kernels of the sum (`sum`) or difference
+                // terms, weighted by the amplitudes and added; the pairs kept.
+                let mut pairs_of = |i: usize, js: Range<usize>, sum: bool| -> u64 {
+                    let n = js.len();
+                    let (kv, vre, vim) = (&mut kv[..n], &mut vre[..n], &mut vim[..n]);
+                    if sum {
+                        kernels.plus(i, js.clone(), kv);
+                    } else {
+                        kernels.minus(i, js.clone(), kv);
+                    }
+                    let (conj, sign) = if sum { (1.0, 1) } else { (-1.0, -1) };
+                    let bj = (&bre[js.clone()], &bim[js.clone()]);
+                    weigh(isa, (bre[i], bim[i]), conj, bj, kv, vre, vim);
+                    if js.start == i && n > 0 {
+                        // The self-pair, counted once; its set-down is exact.
+                        let v = if sum {
+                            b[i] * b[i] * kv[0]
+                        } else {
+                            b[i] * b[i].conj() * self_kernels(&c[i], depth).1
+                        };
+                        (vre[0], vim[0]) = (v.re, v.im);
+                    }
+                    scatter(ms[i], sign, js, (vre, vim))
+                };
                 // Sum terms: lines a ≤ b with a + b = nq; within a line, i ≤ j.
                 for &na in &self.occupied {
                     let nb = nq - na;
@@ -291,24 +318,7 @@ impl SecondOrder {
                     let lb = self.line(nb);
                     for i in self.line(na) {
                         let js = if na == nb { i..lb.end } else { lb.clone() };
-                        let n = js.len();
-                        kernels.plus(i, js.clone(), &mut kv[..n]);
-                        let bj = (&bre[js.clone()], &bim[js.clone()]);
-                        weigh(
-                            isa,
-                            (bre[i], bim[i]),
-                            1.0,
-                            bj,
-                            &kv[..n],
-                            &mut vre[..n],
-                            &mut vim[..n],
-                        );
-                        if js.start == i {
-                            // The self-pair, counted once.
-                            let v = b[i] * b[i] * (1.0 * kv[0]);
-                            (vre[0], vim[0]) = (v.re, v.im);
-                        }
-                        sums += scatter(c[i].m, 1, js, (&vre[..n], &vim[..n]));
+                        sums += pairs_of(i, js, true);
                     }
                 }
                 // Difference terms, oriented so that nq = n_a − n_b ≥ 0; on nq = 0, i ≤ j.
@@ -317,24 +327,7 @@ impl SecondOrder {
                         let lb = self.line(na - nq);
                         for i in self.line(na) {
                             let js = if nq == 0 { i..lb.end } else { lb.clone() };
-                            let n = js.len();
-                            kernels.minus(i, js.clone(), &mut kv[..n]);
-                            let bj = (&bre[js.clone()], &bim[js.clone()]);
-                            weigh(
-                                isa,
-                                (bre[i], bim[i]),
-                                -1.0,
-                                bj,
-                                &kv[..n],
-                                &mut vre[..n],
-                                &mut vim[..n],
-                            );
-                            if js.start == i && n > 0 {
-                                // The set-down of one wave, exact.
-                                let v = b[i] * b[i].conj() * (1.0 * self_kernels(&c[i], depth).1);
-                                (vre[0], vim[0]) = (v.re, v.im);
-                            }
-                            diffs += scatter(c[i].m, -1, js, (&vre[..n], &vim[..n]));
+                            diffs += pairs_of(i, js, false);
                         }
                     }
                 }
@@ -420,7 +413,6 @@ mod tests {
     fn the_line_kernels_give_the_pair_kernels_bits() {
         for depth in [None, Some(0.7), Some(18.0), Some(400.0)] {
             let comps = waves(depth);
-            let cols = Columns::of(&comps, depth);
             for isa in Isa::available() {
                 let cols = Columns {
                     isa,
@@ -440,7 +432,6 @@ mod tests {
                     }
                 }
             }
-            drop(cols);
         }
     }
 

@@ -197,10 +197,12 @@ impl TransformBound {
         data
     }
 
-    /// The fields of f·(|s|/s_p)^a, a = 0 ..= 2·[`DIFF_POWERS`].
+    /// The fields of f·(|s|/s_p)^e for every exponent a term needs, e = −1 ..= 2·[`DIFF_POWERS`]
+    /// (index e + 1): the sum basis' [`EXPONENTS`], the difference powers, and e = 0 for
+    /// the separable part, each transformed once.
     fn powers(&self, b: &[C64], f: Factor) -> Vec<Vec<C64>> {
-        (0..=2 * DIFF_POWERS as i32)
-            .map(|a| self.field(b, f, Some(a)))
+        (-1..=2 * DIFF_POWERS as i32)
+            .map(|e| self.field(b, f, Some(e)))
             .collect()
     }
 
@@ -281,18 +283,15 @@ impl TransformBound {
             self.plan.forward(&mut acc);
             acc
         };
-        // The separable part B + R_i + R_j.
+        // The fields of exponent e are `powers[e + 1]`.
+        let at = |e: i32| (e + 1) as usize;
+        // The separable part B + R_i + R_j (its B terms with the factors' fields below).
         let mut sep = vec![C64::new(0.0, 0.0); px * py];
         {
             let one = self.field(&b, Factor::W0, None);
             let r = self.field(&b, Factor::R, None);
             accumulate(&mut sep, &r, &one, 2.0, 2.0);
-            for (f, sign) in [(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)] {
-                let a = self.field(&b, f, None);
-                accumulate(&mut sep, &a, &a, sign, 1.0);
-            }
         }
-        let mut groups: Vec<(Vec<C64>, bool)> = vec![(transform(sep), false)];
         // Group l holds the sum term's basis pair l (re) and the difference term's power
         // m = l (im): the B terms (multiplied by 2T c) and the S·A terms (by c).
         let pairs = BASIS_PAIRS;
@@ -300,40 +299,31 @@ impl TransformBound {
         let mut b_acc = zeros();
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            let fields: Vec<Vec<C64>> = EXPONENTS
-                .iter()
-                .map(|&e| self.field(&b, f, Some(e)))
-                .collect();
-            for (acc, &(u, v)) in b_acc.iter_mut().zip(&pairs) {
-                accumulate(acc, &fields[u], &fields[v], sign, 0.0);
-            }
             let powers = self.powers(&b, f);
+            accumulate(&mut sep, &powers[at(0)], &powers[at(0)], sign, 1.0);
+            for (acc, &(u, v)) in b_acc.iter_mut().zip(&pairs) {
+                let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
+                accumulate(acc, &powers[u], &powers[v], sign, 0.0);
+            }
             for (m, acc) in b_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                add_power(acc, &powers, &powers, m, 1.0);
+                add_power(acc, &powers[at(0)..], &powers[at(0)..], m, 1.0);
             }
         }
+        let mut groups: Vec<(Vec<C64>, bool)> = vec![(transform(sep), false)];
         let mut sa_acc = Vec::new();
         if finite {
             sa_acc = zeros();
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
-                let ff: Vec<Vec<C64>> = EXPONENTS
-                    .iter()
-                    .map(|&e| self.field(&b, f, Some(e)))
-                    .collect();
-                let gg: Vec<Vec<C64>> = EXPONENTS
-                    .iter()
-                    .map(|&e| self.field(&b, g, Some(e)))
-                    .collect();
+                let (pf, pg) = (self.powers(&b, f), self.powers(&b, g));
                 for (acc, &(u, v)) in sa_acc.iter_mut().zip(&pairs) {
-                    accumulate(acc, &ff[u], &gg[v], 1.0, 0.0);
-                    accumulate(acc, &ff[v], &gg[u], 1.0, 0.0);
+                    let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
+                    accumulate(acc, &pf[u], &pg[v], 1.0, 0.0);
+                    accumulate(acc, &pf[v], &pg[u], 1.0, 0.0);
                 }
-                drop((ff, gg));
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
-                let (pf, pg) = (self.powers(&b, f), self.powers(&b, g));
                 for (m, acc) in sa_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                    add_power(acc, &pf, &pg, m, 2.0 * sign);
+                    add_power(acc, &pf[at(0)..], &pg[at(0)..], m, 2.0 * sign);
                 }
             }
         }
