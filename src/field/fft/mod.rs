@@ -118,7 +118,7 @@ impl SpectrumSetup<'_> {
 
     /// The time the phases ω·t use: t, or t mod T with a loop period T.
     #[inline]
-    fn phase_time(&self) -> f64 {
+    pub(crate) fn phase_time(&self) -> f64 {
         match self.loop_period_s {
             Some(period) => self.time_s - period * (self.time_s / period).floor(),
             None => self.time_s,

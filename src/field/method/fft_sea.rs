@@ -7,6 +7,7 @@ use crate::config::{DEFAULT_NONLINEAR_FRACTION, Nonlinear, NonlinearMethod, Para
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::{Extras, Surface};
+use crate::field::fft::second_order::looped::{LoopedBound, MAX_BINS_PER_CELL};
 use crate::field::fft::second_order::transform::TransformBound;
 use crate::field::fft::second_order::{SecondOrder, SecondOrderInfo};
 use crate::field::fft::{self, Amplitudes};
@@ -31,6 +32,8 @@ struct Ready {
 enum Bound {
     /// The exact pair sum of the strongest components.
     Pairs(Box<SecondOrder>),
+    /// The same pair sum of a looping sea, binned once by the pairs' multiples of 2π/T.
+    Looped(Box<LoopedBound>),
     /// Every component, fitted kernels, by transforms (with what the sidecar records).
     Fitted(Box<TransformBound>, SecondOrderInfo),
 }
@@ -61,6 +64,7 @@ impl FftSea {
         };
         let bound = ready.second_order.as_ref().map(|b| match b {
             Bound::Pairs(so) => so.add_to(&setup, &mut half),
+            Bound::Looped(lb) => lb.add_to(&setup, &mut half),
             Bound::Fitted(tb, info) => {
                 tb.add_to(&setup, &mut half);
                 info.clone()
@@ -91,7 +95,14 @@ impl HeightMethod for FftSea {
             match s.nonlinear_method {
                 NonlinearMethod::Pairs => {
                     let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
-                    Bound::Pairs(Box::new(SecondOrder::new(&setup, q)))
+                    let so = SecondOrder::new(&setup, q);
+                    let looped = setup
+                        .loop_period_s
+                        .and_then(|period| LoopedBound::new(&so, &setup, period));
+                    match looped {
+                        Some(lb) => Bound::Looped(Box::new(lb)),
+                        None => Bound::Pairs(Box::new(so)),
+                    }
                 }
                 NonlinearMethod::Fitted => {
                     let (tb, info) = TransformBound::for_setup(&setup);
@@ -116,14 +127,19 @@ impl HeightMethod for FftSea {
     }
 
     fn bytes_per_sample(&self) -> u64 {
-        // A second-order sea adds its full-plane bound spectrum (complex f64); the fitted
-        // method its components and about a dozen complex f64 arrays of the grid padded
-        // by 3/2 per axis.
+        // A second-order sea adds its full-plane bound spectrum (complex f64), a looping
+        // one at most MAX_BINS_PER_CELL complex f64 bins a cell; the fitted method its
+        // components and about a dozen complex f64 arrays of the grid padded by 3/2 per
+        // axis.
         let s = &self.params.spectrum;
         if s.nonlinear.is_linear() {
             10
         } else if s.nonlinear_method.is_pairs() {
-            26
+            let bins = match self.params.motion.loop_period_s {
+                Some(_) => 16 * MAX_BINS_PER_CELL as u64,
+                None => 0,
+            };
+            26 + bins
         } else {
             10 + 88 + 12 * 16 * 9 / 4
         }

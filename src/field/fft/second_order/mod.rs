@@ -195,6 +195,10 @@ pub struct SecondOrderInfo {
     /// The fitted kernels' estimated rms error, as a fraction of the bound waves' rms.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_rel_rms_error: Option<f64>,
+    /// With a loop period: the multiples ν of 2π/T the pairs turn with, when the pair
+    /// sum is binned by them once for every time (absent: summed at each time).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_multiples: Option<usize>,
 }
 
 /// The paired components of a sea, by kx line.
@@ -418,6 +422,7 @@ pub fn add_plane(z: &[C64], half: &mut HalfSpectrum) {
 }
 
 pub mod fit;
+pub mod looped;
 mod pairs;
 pub mod transform;
 

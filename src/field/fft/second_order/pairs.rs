@@ -149,6 +149,23 @@ multiversion! {
     }
 }
 
+/// Where [`SecondOrder::row_pairs`] hands the weighted pairs: `(i, sign, js, (re, im))`.
+pub(super) type AddPairs<'a> = dyn FnMut(usize, i64, Range<usize>, (&[f64], &[f64])) + 'a;
+
+/// The complex amplitudes b_i of the paired components, and as columns.
+pub(super) struct Amps {
+    pub b: Vec<C64>,
+    re: Vec<f64>,
+    im: Vec<f64>,
+}
+
+impl Amps {
+    pub fn new(b: Vec<C64>) -> Self {
+        let (re, im) = b.iter().map(|v| (v.re, v.im)).unzip();
+        Self { b, re, im }
+    }
+}
+
 /// Kernels given pair by pair (the fitted kernels in the tests), as line kernels.
 pub struct PairwiseKernels<'a, P, M> {
     pub comps: &'a [Component],
@@ -214,53 +231,29 @@ impl SecondOrder {
         kernels: &dyn LineKernels,
     ) -> (Vec<C64>, u64, u64) {
         let (nx, ny) = (self.nx, self.ny);
-        let b = self.amplitudes(setup);
-        let (bre, bim): (Vec<f64>, Vec<f64>) = b.iter().map(|v| (v.re, v.im)).unzip();
+        let b = Amps::new(self.amplitudes(setup));
         let ms = &self.columns.m;
-        let c = &self.comps;
-        let mut z = vec![C64::new(0.0, 0.0); nx * ny];
-        let depth = self.depth;
         let isa = self.columns.isa;
-        let longest = self.lines.iter().map(|r| r.len()).max().unwrap_or(0);
-        // The resolved outputs m: lo ..= hi.
-        let half = (ny / 2) as i64;
-        let (lo, hi) = if ny % 2 == 0 {
-            (1 - half, half - 1)
-        } else {
-            (-half, half)
-        };
+        let mut z = vec![C64::new(0.0, 0.0); nx * ny];
         let counts: Vec<(u64, u64)> = z
             .par_chunks_mut(ny)
             .enumerate()
             .map(|(row, zline)| {
-                let nq = signed_index(row, nx);
-                if !on_grid(nq, nx) {
-                    return (0, 0);
-                }
-                let mut kv = vec![0.0; longest];
-                let mut vre = vec![0.0; longest];
-                let mut vim = vec![0.0; longest];
-                let (mut sums, mut diffs) = (0u64, 0u64);
-                // Adds the weighted pairs `v` (partners js) at outputs m = mi ± m_j: the
-                // partners are in ascending m, so the kept ones are one run, split where
-                // the output's index wraps.
-                let mut scatter = |mi: i64, sign: i64, js: Range<usize>, v: (&[f64], &[f64])| {
-                    let m = &ms[js.clone()];
+                // The outputs m = m_i ± m_j of consecutive kept partners are consecutive
+                // (ascending for sums, descending for differences): one run each side of
+                // where the output's index wraps.
+                let mut add = |i: usize, sign: i64, js: Range<usize>, v: (&[f64], &[f64])| {
+                    let (mi, m) = (ms[i], &ms[js]);
                     let out = |mj: i64| mi + sign * mj;
-                    let (first, last, wrap) = if sign > 0 {
-                        let a = m.partition_point(|&mj| out(mj) < lo);
-                        let b = m.partition_point(|&mj| out(mj) <= hi);
-                        (a, b, m.partition_point(|&mj| out(mj) < 0))
+                    let wrap = if sign > 0 {
+                        m.partition_point(|&mj| out(mj) < 0)
                     } else {
-                        let a = m.partition_point(|&mj| out(mj) > hi);
-                        let b = m.partition_point(|&mj| out(mj) >= lo);
-                        (a, b, m.partition_point(|&mj| out(mj) >= 0))
+                        m.partition_point(|&mj| out(mj) >= 0)
                     };
-                    let wrap = wrap.clamp(first, last);
                     let (neg, pos) = if sign > 0 {
-                        (first..wrap, wrap..last)
+                        (0..wrap, wrap..m.len())
                     } else {
-                        (wrap..last, first..wrap)
+                        (wrap..m.len(), 0..wrap)
                     };
                     for (range, offset) in [(neg, ny as i64), (pos, 0)] {
                         if range.is_empty() {
@@ -268,7 +261,6 @@ impl SecondOrder {
                         }
                         let (a, b) = (range.start, range.end);
                         if m[b - 1] - m[a] == (b - a - 1) as i64 {
-                            // Consecutive partners: one run of outputs.
                             let (vr, vi) = (&v.0[a..b], &v.1[a..b]);
                             if sign > 0 {
                                 let at = (out(m[a]) + offset) as usize;
@@ -283,59 +275,110 @@ impl SecondOrder {
                             zline[(out(m[j]) + offset) as usize] += C64::new(v.0[j], v.1[j]);
                         }
                     }
-                    (last - first) as u64
                 };
-                // The pairs of wave i with partners js: the kernels of the sum (`sum`) or difference
-                // terms, weighted by the amplitudes and added; the pairs kept.
-                let mut pairs_of = |i: usize, js: Range<usize>, sum: bool| -> u64 {
-                    let n = js.len();
-                    let (kv, vre, vim) = (&mut kv[..n], &mut vre[..n], &mut vim[..n]);
-                    if sum {
-                        kernels.plus(i, js.clone(), kv);
-                    } else {
-                        kernels.minus(i, js.clone(), kv);
-                    }
-                    let (conj, sign) = if sum { (1.0, 1) } else { (-1.0, -1) };
-                    let bj = (&bre[js.clone()], &bim[js.clone()]);
-                    weigh(isa, (bre[i], bim[i]), conj, bj, kv, vre, vim);
-                    if js.start == i && n > 0 {
-                        // The self-pair, counted once; its set-down is exact.
-                        let v = if sum {
-                            b[i] * b[i] * kv[0]
-                        } else {
-                            b[i] * b[i].conj() * self_kernels(&c[i], depth).1
-                        };
-                        (vre[0], vim[0]) = (v.re, v.im);
-                    }
-                    scatter(ms[i], sign, js, (vre, vim))
-                };
-                // Sum terms: lines a ≤ b with a + b = nq; within a line, i ≤ j.
-                for &na in &self.occupied {
-                    let nb = nq - na;
-                    if nb < na {
-                        break;
-                    }
-                    let lb = self.line(nb);
-                    for i in self.line(na) {
-                        let js = if na == nb { i..lb.end } else { lb.clone() };
-                        sums += pairs_of(i, js, true);
-                    }
-                }
-                // Difference terms, oriented so that nq = n_a − n_b ≥ 0; on nq = 0, i ≤ j.
-                if nq >= 0 {
-                    for &na in &self.occupied {
-                        let lb = self.line(na - nq);
-                        for i in self.line(na) {
-                            let js = if nq == 0 { i..lb.end } else { lb.clone() };
-                            diffs += pairs_of(i, js, false);
-                        }
-                    }
-                }
-                (sums, diffs)
+                self.row_pairs(signed_index(row, nx), &b, kernels, &mut add)
             })
             .collect();
         let (s, d) = counts.iter().fold((0, 0), |(s, d), &(a, b)| (s + a, d + b));
         (z, s, d)
+    }
+
+    /// The pairs of output kx line `nq`, in the fixed order of the module notes: for each
+    /// wave i and run of partners js whose outputs m_i ± m_j (+ for sums, `sign` = 1; −
+    /// for differences) lie on the grid, `add(i, sign, js, v)` with the weighted pairs
+    /// v_j = b_i·b_j′·2K (b_j′ = conj b_j for differences; the self-pair's set-down
+    /// exact). Returns the sum and difference pairs kept.
+    pub(super) fn row_pairs(
+        &self,
+        nq: i64,
+        amps: &Amps,
+        kernels: &dyn LineKernels,
+        add: &mut AddPairs,
+    ) -> (u64, u64) {
+        if !on_grid(nq, self.nx) {
+            return (0, 0);
+        }
+        let (b, bre, bim) = (&amps.b, &amps.re, &amps.im);
+        let ms = &self.columns.m;
+        let isa = self.columns.isa;
+        let longest = self.lines.iter().map(|r| r.len()).max().unwrap_or(0);
+        // The resolved outputs m: lo ..= hi.
+        let ny = self.ny;
+        let half = (ny / 2) as i64;
+        let (lo, hi) = if ny % 2 == 0 {
+            (1 - half, half - 1)
+        } else {
+            (-half, half)
+        };
+        let mut kv = vec![0.0; longest];
+        let mut vre = vec![0.0; longest];
+        let mut vim = vec![0.0; longest];
+        let (mut sums, mut diffs) = (0u64, 0u64);
+        // The pairs of wave i with the partners of js whose output is on the grid (one
+        // run: the partners are in ascending m): kernels, weights, `add`.
+        let mut pairs_of = |i: usize, js: Range<usize>, sum: bool| -> u64 {
+            let (mi, sign) = (ms[i], if sum { 1 } else { -1 });
+            let m = &ms[js.clone()];
+            let (first, last) = if sum {
+                (
+                    m.partition_point(|&mj| mi + mj < lo),
+                    m.partition_point(|&mj| mi + mj <= hi),
+                )
+            } else {
+                (
+                    m.partition_point(|&mj| mi - mj > hi),
+                    m.partition_point(|&mj| mi - mj >= lo),
+                )
+            };
+            let js = js.start + first..js.start + last.max(first);
+            let n = js.len();
+            if n == 0 {
+                return 0;
+            }
+            let (kv, vre, vim) = (&mut kv[..n], &mut vre[..n], &mut vim[..n]);
+            if sum {
+                kernels.plus(i, js.clone(), kv);
+            } else {
+                kernels.minus(i, js.clone(), kv);
+            }
+            let conj = if sum { 1.0 } else { -1.0 };
+            let bj = (&bre[js.clone()], &bim[js.clone()]);
+            weigh(isa, (bre[i], bim[i]), conj, bj, kv, vre, vim);
+            if js.start == i {
+                // The self-pair, counted once; its set-down is exact.
+                let v = if sum {
+                    b[i] * b[i] * kv[0]
+                } else {
+                    b[i] * b[i].conj() * self_kernels(&self.comps[i], self.depth).1
+                };
+                (vre[0], vim[0]) = (v.re, v.im);
+            }
+            add(i, sign, js, (vre, vim));
+            n as u64
+        };
+        // Sum terms: lines a ≤ b with a + b = nq; within a line, i ≤ j.
+        for &na in &self.occupied {
+            let nb = nq - na;
+            if nb < na {
+                break;
+            }
+            let lb = self.line(nb);
+            for i in self.line(na) {
+                let js = if na == nb { i..lb.end } else { lb.clone() };
+                sums += pairs_of(i, js, true);
+            }
+        }
+        // Difference terms, oriented so that nq = n_a − n_b ≥ 0; on nq = 0, i ≤ j.
+        if nq >= 0 {
+            for &na in &self.occupied {
+                let lb = self.line(na - nq);
+                for i in self.line(na) {
+                    let js = if nq == 0 { i..lb.end } else { lb.clone() };
+                    diffs += pairs_of(i, js, false);
+                }
+            }
+        }
+        (sums, diffs)
     }
 }
 
