@@ -216,6 +216,45 @@ pub struct SecondOrder {
     pub info: SecondOrderInfo,
 }
 
+/// Every resolved component with energy of `setup`, line by line (kx index ≥ 0, with its
+/// mirror line), as `keep` maps it (None: left out).
+fn each_line<T: Send>(
+    setup: &SpectrumSetup,
+    isa: Isa,
+    depth: Option<f64>,
+    keep: &(dyn Fn(Component) -> Option<T> + Sync),
+) -> Vec<Vec<T>> {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    let per_line: Mutex<Vec<Vec<T>>> = Mutex::new((0..=nx / 2).map(|_| Vec::new()).collect());
+    build_lines(setup, |n, _kx, buf, _line| {
+        draw_line(setup, isa, n, buf);
+        let mut out = Vec::new();
+        for r in resolved_ranges(n, nx, ny) {
+            for idx in r {
+                let m = signed_index(idx, ny);
+                let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
+                    if rho > 0.0 {
+                        let (kx, ky) = setup.wavevector(n, m);
+                        let mut c = Component::new(kx, ky, rho, phi, depth);
+                        (c.n, c.m, c.p) = (n, m, p);
+                        out.extend(keep(c));
+                    }
+                };
+                push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
+                // On the kx = 0 line the a draws of ±m already cover both.
+                if n > 0 {
+                    push(-n, -m, buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+                }
+            }
+        }
+        per_line.lock().expect("no panics while holding the lock")[n as usize] = out;
+        0.0
+    });
+    per_line
+        .into_inner()
+        .expect("no panics while holding the lock")
+}
+
 fn depth_of(d: Dispersion) -> Option<f64> {
     match d {
         Dispersion::Deep => None,
@@ -241,49 +280,19 @@ impl SecondOrder {
         let isa = Isa::detect();
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let depth = depth_of(setup.dispersion);
-        let per_line: Mutex<Vec<Vec<Component>>> = Mutex::new(vec![Vec::new(); nx / 2 + 1]);
-        build_lines(setup, |n, _kx, buf, _line| {
-            draw_line(setup, isa, n, buf);
-            let mut out = Vec::new();
-            for r in resolved_ranges(n, nx, ny) {
-                for idx in r {
-                    let m = signed_index(idx, ny);
-                    let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
-                        if rho > 0.0 {
-                            let (kx, ky) = setup.wavevector(n, m);
-                            let mut c = Component::new(kx, ky, rho, phi, depth);
-                            (c.n, c.m, c.p) = (n, m, p);
-                            out.push(c);
-                        }
-                    };
-                    push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
-                    // On the kx = 0 line the a draws of ±m already cover both.
-                    if n > 0 {
-                        push(-n, -m, buf.pb[idx], buf.rb[idx], buf.phb[idx]);
-                    }
-                }
-            }
-            per_line.lock().expect("no panics while holding the lock")[n as usize] = out;
-            0.0
-        });
-        let all: Vec<Component> = per_line
-            .into_inner()
-            .expect("no panics while holding the lock")
+        // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
+        // whatever the sort or the threads), of light keys, sorted in parallel.
+        type Key = (f64, i64, i64);
+        let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2)));
+        let mut keys: Vec<Key> = each_line(setup, isa, depth, &|c| Some((c.p, c.n, c.m)))
             .into_iter()
             .flatten()
             .collect();
-        let available = all.len();
-        // The ranking (by E|h̃0|² descending, ties by index) of light keys, in parallel: a
-        // total order, so the same whatever the sort or the threads.
-        let mut keys: Vec<(f64, i64, i64, usize)> = all
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (c.p, c.n, c.m, i))
-            .collect();
-        keys.par_sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2))));
+        let available = keys.len();
+        keys.par_sort_unstable_by(rank);
         let total: f64 = keys.iter().map(|k| k.0).sum();
         let mut kept = 0.0;
-        let mut count = 0;
+        let mut count = 0usize;
         for k in &keys {
             // q = 1 keeps every component (the sum of the largest reaches the total in
             // floating point before the smallest are added).
@@ -293,7 +302,18 @@ impl SecondOrder {
             kept += k.0;
             count += 1;
         }
-        let all: Vec<Component> = keys[..count].iter().map(|k| all[k.3]).collect();
+        let last = count.checked_sub(1).map(|i| keys[i]);
+        drop(keys);
+        // The kept components: those ranked no later than the last kept key.
+        let all: Vec<Component> = match last {
+            None => Vec::new(),
+            Some(last) => each_line(setup, isa, depth, &|c| {
+                rank(&(c.p, c.n, c.m), &last).is_le().then_some(c)
+            })
+            .into_iter()
+            .flatten()
+            .collect(),
+        };
         let info = SecondOrderInfo {
             fraction,
             components_available: available,

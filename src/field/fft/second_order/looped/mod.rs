@@ -31,14 +31,16 @@ use crate::grid::signed_index;
 /// summed in f64 and kept in f32, the precision of the spectrum they join).
 pub const MAX_BINS_PER_CELL: usize = 16;
 
-/// The bins of one output kx line: ky indices from m_lo (signed, on the grid) by
-/// multiples ν_lo ..= ν_lo + count − 1.
+/// The bins of one output kx line: multiples ν_lo ..= ν_lo + count − 1 by ky indices
+/// m_lo ..= m_lo + width − 1 (signed, on the grid).
 #[derive(Default)]
 struct Row {
     m_lo: i64,
+    width: usize,
     nu_lo: i64,
     count: usize,
-    /// [(m − m_lo)·count + (ν − ν_lo)].
+    /// [(ν − ν_lo)·width + (m − m_lo)]: consecutive partners (neighbours in k, so mostly
+    /// of one ν) add to consecutive bins.
     z: Vec<Complex32>,
 }
 
@@ -179,6 +181,26 @@ fn row_window(so: &SecondOrder, spans: &[(Span, Span)], nq: i64) -> (Span, Span)
     (m.clip(lo, hi), nu)
 }
 
+/// Adds the weighted pairs `v` of one wave (its cell and bin offsets `at`) with partners
+/// of ky indices and multiples `mn` to the bins `z` of a row `width` cells wide.
+#[inline]
+fn add_binned(
+    z: &mut [C64],
+    width: usize,
+    at: (i64, i64),
+    sign: i64,
+    mn: (&[i64], &[i64]),
+    v: (&[f64], &[f64]),
+) {
+    let n = v.0.len();
+    let (ms, nus, vre, vim) = (&mn.0[..n], &mn.1[..n], v.0, &v.1[..n]);
+    for j in 0..n {
+        let cell = at.0 + sign * ms[j];
+        let bin = at.1 + sign * nus[j];
+        z[bin as usize * width + cell as usize] += C64::new(vre[j], vim[j]);
+    }
+}
+
 impl LoopedBound {
     /// The bins of `so` (components of `setup`, its time not used) for the loop period
     /// `period`, s; None when they would exceed [`MAX_BINS_PER_CELL`] per cell.
@@ -212,16 +234,12 @@ impl LoopedBound {
                 if m.len() == 0 || nu.len() == 0 {
                     return (Row::default(), (0, 0));
                 }
-                let (m_lo, nu_lo, count) = (m.lo, nu.lo, nu.len());
-                let mut z = vec![C64::new(0.0, 0.0); m.len() * count];
+                let (m_lo, width, nu_lo, count) = (m.lo, m.len(), nu.lo, nu.len());
+                let mut z = vec![C64::new(0.0, 0.0); width * count];
                 let mut add =
                     |i: usize, sign: i64, js: std::ops::Range<usize>, v: (&[f64], &[f64])| {
-                        let (mi, ni) = (ms[i] - m_lo, nus[i] - nu_lo);
-                        for (x, j) in js.enumerate() {
-                            let cell = mi + sign * ms[j];
-                            let bin = ni + sign * nus[j];
-                            z[cell as usize * count + bin as usize] += C64::new(v.0[x], v.1[x]);
-                        }
+                        let at = (ms[i] - m_lo, nus[i] - nu_lo);
+                        add_binned(&mut z, width, at, sign, (&ms[js.clone()], &nus[js]), v);
                     };
                 let counts = so.row_pairs(signed_index(row, nx), &amps, &so.columns, &mut add);
                 let z = z
@@ -230,6 +248,7 @@ impl LoopedBound {
                     .collect();
                 let r = Row {
                     m_lo,
+                    width,
                     nu_lo,
                     count,
                     z,
@@ -286,12 +305,14 @@ impl LoopedBound {
                     return;
                 }
                 let turn = &turn[(r.nu_lo - self.nu.lo) as usize..][..r.count];
-                for (x, bins) in r.z.chunks_exact(r.count).enumerate() {
-                    let m = r.m_lo + x as i64;
-                    let mut v = C64::new(0.0, 0.0);
-                    for (b, w) in bins.iter().zip(turn) {
-                        v += C64::new(f64::from(b.re), f64::from(b.im)) * w;
+                let mut v = vec![C64::new(0.0, 0.0); r.width];
+                for (plane, w) in r.z.chunks_exact(r.width).zip(turn) {
+                    for (v, b) in v.iter_mut().zip(plane) {
+                        *v += C64::new(f64::from(b.re), f64::from(b.im)) * w;
                     }
+                }
+                for (x, v) in v.into_iter().enumerate() {
+                    let m = r.m_lo + x as i64;
                     zline[m.rem_euclid(ny as i64) as usize] = v;
                 }
             });
