@@ -343,7 +343,8 @@ fn the_fitted_method_pairs_every_component_with_tayfun_skewness_at_any_thread_co
 
 /// `bench --second-order` times the linear sea, the pair sum and the fitted method at each
 /// size and states the two ratios to the linear field: both are numbers, and a second-order
-/// sea, which computes the linear one and its bound waves, is not faster than it.
+/// sea, which computes the linear one and its bound waves, is not faster than it; and a
+/// looping 48-frame sequence of each, with its ratio.
 #[test]
 fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linear_sea() {
     let dir = tempfile::tempdir().unwrap();
@@ -379,4 +380,21 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
     for r in ratios {
         assert!(r.is_finite() && r >= 1.0, "{line}");
     }
+    // The looping sequence: 48 frames of each, and their ratio.
+    for row in [
+        "48 frames, linear, loop 20 s",
+        "48 frames, pair sum, loop 20 s",
+    ] {
+        assert!(out.contains(row), "no row {row:?}:\n{out}");
+    }
+    let line = out
+        .lines()
+        .find(|l| l.contains("looping 48-frame sequence, second order ÷ linear"))
+        .unwrap_or_else(|| panic!("no sequence ratio line:\n{out}"));
+    let ratio: f64 = line
+        .rsplit(": ")
+        .next()
+        .and_then(|s| s.trim_end_matches('×').parse().ok())
+        .unwrap_or_else(|| panic!("no ratio in {line:?}"));
+    assert!(ratio.is_finite() && ratio > 0.0, "{line}");
 }
