@@ -238,6 +238,36 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
             "frame {k} and generate --time {t}"
         );
     }
+    // Without a loop every frame sums its pairs: animate says so, and how to avoid it.
+    let unlooped: Vec<&str> = sea
+        .iter()
+        .copied()
+        .filter(|a| !matches!(*a, "--loop-period" | "10" | "-q"))
+        .collect();
+    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "u"];
+    a.extend(&unlooped);
+    let err = String::from_utf8(
+        common::seasynth()
+            .current_dir(dir.path())
+            .args(&a)
+            .output()
+            .unwrap()
+            .stderr,
+    )
+    .unwrap();
+    assert!(err.contains("note: without --loop-period"), "{err}");
+    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "l"];
+    a.extend(sea.iter().filter(|a| **a != "-q"));
+    let err = String::from_utf8(
+        common::seasynth()
+            .current_dir(dir.path())
+            .args(&a)
+            .output()
+            .unwrap()
+            .stderr,
+    )
+    .unwrap();
+    assert!(!err.contains("note: without --loop-period"), "{err}");
     let side = common::json_file(&dir.path().join("g.json"));
     let multiples = side["synthesis"]["second_order"]["loop_multiples"]
         .as_u64()

@@ -33,6 +33,16 @@ pub fn run(args: AnimateArgs) -> Result<()> {
     if let Some(up) = args.up.as_deref() {
         flags.push(("--up", up));
     }
+    let s = &params.spectrum;
+    let per_frame_pairs = s.nonlinear == crate::config::Nonlinear::SecondOrder
+        && s.nonlinear_method.is_pairs()
+        && params.motion.loop_period_s.is_none();
+    if per_frame_pairs && args.frames > 1 && !args.quiet {
+        eprintln!(
+            "note: without --loop-period every frame sums the second-order pairs again; with \
+             one they are summed once for the whole sequence (docs/methods.md, looping seas)"
+        );
+    }
     let started = Instant::now();
     let done = write_sequence(&Sequence {
         params: &params,
