@@ -244,29 +244,16 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
         .copied()
         .filter(|a| !matches!(*a, "--loop-period" | "10" | "-q"))
         .collect();
-    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "u"];
-    a.extend(&unlooped);
-    let err = String::from_utf8(
-        common::seasynth()
-            .current_dir(dir.path())
-            .args(&a)
-            .output()
-            .unwrap()
-            .stderr,
-    )
-    .unwrap();
+    let stderr_of = |out: &str, args: &[&str]| {
+        let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", out];
+        a.extend(args);
+        let run = common::seasynth().current_dir(dir.path()).args(&a).output();
+        String::from_utf8(run.unwrap().stderr).unwrap()
+    };
+    let err = stderr_of("u", &unlooped);
     assert!(err.contains("note: without --loop-period"), "{err}");
-    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "l"];
-    a.extend(sea.iter().filter(|a| **a != "-q"));
-    let err = String::from_utf8(
-        common::seasynth()
-            .current_dir(dir.path())
-            .args(&a)
-            .output()
-            .unwrap()
-            .stderr,
-    )
-    .unwrap();
+    let looped: Vec<&str> = sea.iter().copied().filter(|a| *a != "-q").collect();
+    let err = stderr_of("l", &looped);
     assert!(!err.contains("note: without --loop-period"), "{err}");
     let side = common::json_file(&dir.path().join("g.json"));
     let multiples = side["synthesis"]["second_order"]["loop_multiples"]

@@ -2,6 +2,16 @@ use super::*;
 use crate::field::fft::{InverseFft2, OneComponent};
 use crate::grid::GridSpec;
 
+/// The parameters of `KEY=VALUE` assignments over the defaults.
+pub(super) fn params_of(sets: &[&str]) -> crate::config::Params {
+    use crate::config::layers::{Assignment, apply};
+    let a: Vec<Assignment> = sets
+        .iter()
+        .map(|s| Assignment::parse_set(s).unwrap())
+        .collect();
+    apply(crate::config::Params::default(), &a).unwrap()
+}
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }

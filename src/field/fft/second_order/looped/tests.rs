@@ -1,15 +1,5 @@
 use super::*;
-use crate::config::Params;
-use crate::config::layers::{Assignment, apply};
-
-/// The spectrum model and grid of `KEY=VALUE` assignments over the defaults.
-fn sea_of(sets: &[&str]) -> Params {
-    let a: Vec<Assignment> = sets
-        .iter()
-        .map(|s| Assignment::parse_set(s).unwrap())
-        .collect();
-    apply(Params::default(), &a).unwrap()
-}
+use crate::field::fft::second_order::tests::params_of;
 
 fn max_abs(z: &[C64]) -> f64 {
     z.iter().fold(0.0, |m, v| m.max(v.norm()))
@@ -34,7 +24,7 @@ fn the_bins_give_the_pair_sum_at_any_time() {
         if depth.is_some() {
             sets.push("depth=8");
         }
-        let params = sea_of(&sets);
+        let params = params_of(&sets);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let period = 20.0;
         let setup_at = |t: f64| SpectrumSetup {
@@ -76,7 +66,7 @@ fn the_bins_give_the_pair_sum_at_any_time() {
 fn a_loop_too_long_for_the_bins_keeps_the_pair_sum_per_frame() {
     // With T = 10⁵ s the multiples of one line span hundreds of bins: more than
     // MAX_BINS_PER_CELL per cell, so no bins.
-    let params = sea_of(&[
+    let params = params_of(&[
         "method=fft",
         "spectrum=pierson-moskowitz",
         "wind-speed=12",

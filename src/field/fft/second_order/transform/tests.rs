@@ -1,19 +1,9 @@
 use super::*;
-use crate::config::Params;
-use crate::config::layers::{Assignment, apply};
 use crate::field::fft::InverseFft2;
 use crate::field::fft::second_order::SecondOrder;
 use crate::field::fft::second_order::add_plane;
+use crate::field::fft::second_order::tests::params_of;
 use rustfft::num_complex::Complex32;
-
-/// The parameters of `KEY=VALUE` assignments over the defaults.
-fn params_of(sets: &[&str]) -> Params {
-    let a: Vec<Assignment> = sets
-        .iter()
-        .map(|s| Assignment::parse_set(s).unwrap())
-        .collect();
-    apply(Params::default(), &a).unwrap()
-}
 
 /// The setup of one frame of `spectrum` on `spec` (no loop).
 fn setup_at<'a>(
