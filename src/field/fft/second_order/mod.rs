@@ -255,6 +255,15 @@ fn each_line<T: Send>(
         .expect("no panics while holding the lock")
 }
 
+/// The lines' items in one vector, each line freed once moved (no regrowth).
+fn flat<T>(lines: Vec<Vec<T>>) -> Vec<T> {
+    let mut out = Vec::with_capacity(lines.iter().map(Vec::len).sum());
+    for line in lines {
+        out.extend(line);
+    }
+    out
+}
+
 fn depth_of(d: Dispersion) -> Option<f64> {
     match d {
         Dispersion::Deep => None,
@@ -281,13 +290,15 @@ impl SecondOrder {
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let depth = depth_of(setup.dispersion);
         // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
-        // whatever the sort or the threads), of light keys, sorted in parallel.
-        type Key = (f64, i64, i64);
-        let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then((a.1, a.2).cmp(&(b.1, b.2)));
-        let mut keys: Vec<Key> = each_line(setup, isa, depth, &|c| Some((c.p, c.n, c.m)))
-            .into_iter()
-            .flatten()
-            .collect();
+        // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
+        // packed in their order), sorted in parallel.
+        type Key = (f64, u64);
+        let key = |c: &Component| {
+            let at = |i: i64| (i + (1 << 31)) as u64;
+            (c.p, at(c.n) << 32 | at(c.m))
+        };
+        let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
+        let mut keys: Vec<Key> = flat(each_line(setup, isa, depth, &|c| Some(key(&c))));
         let available = keys.len();
         keys.par_sort_unstable_by(rank);
         let total: f64 = keys.iter().map(|k| k.0).sum();
@@ -307,12 +318,9 @@ impl SecondOrder {
         // The kept components: those ranked no later than the last kept key.
         let all: Vec<Component> = match last {
             None => Vec::new(),
-            Some(last) => each_line(setup, isa, depth, &|c| {
-                rank(&(c.p, c.n, c.m), &last).is_le().then_some(c)
-            })
-            .into_iter()
-            .flatten()
-            .collect(),
+            Some(last) => flat(each_line(setup, isa, depth, &|c| {
+                rank(&key(&c), &last).is_le().then_some(c)
+            })),
         };
         let info = SecondOrderInfo {
             fraction,
