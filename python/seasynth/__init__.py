@@ -42,6 +42,7 @@ __all__ = [
     "Params",
     "Field",
     "generate",
+    "Sea",
     "animate",
     "write_sequence",
     "spectrum",
@@ -352,6 +353,29 @@ def generate(params: Optional[Params] = None, *, preset: Optional[PathLike] = No
     """
     p = _params(params, preset, keys, kwargs)
     return Field(_seasynth.generate(p._core, _maps(maps), threads, resample))
+
+
+class Sea:
+    """One sea prepared once, for frames at any time: ``Sea(...).frame(t)`` is
+    ``generate(..., time=t)`` bit for bit, without redoing the preparation each time
+    (the random draws, and a looping second-order sea's pairs, summed once by their
+    multiples of 2π/T). For a host that asks for frames out of order (a timeline).
+    Arguments as for :func:`generate`."""
+
+    __slots__ = ("_core", "params")
+
+    def __init__(self, params: Optional[Params] = None, *, preset: Optional[PathLike] = None,
+                 keys: Optional[Mapping[str, Any]] = None, maps: Sequence[str] = (),
+                 threads: Optional[int] = None, resample: bool = True, **kwargs: Any):
+        self.params = _params(params, preset, keys, kwargs)
+        self._core = _seasynth.SeaCore(self.params._core, _maps(maps), threads, resample)
+
+    def frame(self, time: float) -> Field:
+        """The field at ``time`` seconds."""
+        return Field(self._core.frame(float(time)))
+
+    def __repr__(self) -> str:
+        return f"seasynth.Sea({self.params!r})"
 
 
 class _Frames:

@@ -391,6 +391,54 @@ fn generate(
     })
 }
 
+/// One sea prepared once for frames at any time: `generate` at each time, bit for bit,
+/// without its preparation (the draws, and the binned pairs of a looping second-order
+/// sea) every time.
+#[pyclass(module = "seasynth._seasynth", name = "SeaCore", frozen)]
+struct PySea {
+    params: Params,
+    kinds: Vec<MapKind>,
+    threads: Option<usize>,
+    prepared: Arc<compute::Prepared>,
+}
+
+#[pymethods]
+impl PySea {
+    #[new]
+    #[pyo3(signature = (params, maps = Vec::new(), threads = None, resample = true))]
+    fn new(
+        py: Python<'_>,
+        params: &PyParams,
+        maps: Vec<String>,
+        threads: Option<usize>,
+        resample: bool,
+    ) -> PyResult<Self> {
+        let kinds = map_kinds(&maps)?;
+        let p = params.inner.clone();
+        let extras = extras_with(&kinds, resample);
+        let prepared = run(py, threads, move || {
+            Ok(Arc::new(compute::Prepared::new(&p, extras, true)?))
+        })?;
+        Ok(Self {
+            params: params.inner.clone(),
+            kinds,
+            threads,
+            prepared,
+        })
+    }
+
+    /// The field at `time_s`.
+    fn frame(&self, py: Python<'_>, time_s: f64) -> PyResult<PyField> {
+        let (prepared, kinds) = (self.prepared.clone(), self.kinds.clone());
+        let mut params = self.params.clone();
+        params.time_s = time_s;
+        run(py, self.threads, move || {
+            let synthesis = prepared.frame(time_s)?;
+            Ok(PyField::new(params, synthesis, &kinds, None))
+        })
+    }
+}
+
 /// The frames of a sequence, computed one ahead of the caller on a worker thread.
 #[pyclass(module = "seasynth._seasynth", name = "Frames")]
 struct PyFrames {
@@ -627,6 +675,7 @@ fn _seasynth(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyParams>()?;
     m.add_class::<PyField>()?;
     m.add_class::<PyFrames>()?;
+    m.add_class::<PySea>()?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(animate, m)?)?;
     m.add_function(wrap_pyfunction!(write_sequence, m)?)?;

@@ -91,6 +91,27 @@ def test_frames_equal_the_cli_animate_frames_bit_for_bit(cli, tmp_path):
         assert np.array_equal(g.height, f.height)
 
 
+@pytest.mark.parametrize("extra", [
+    {"choppiness": 0.8},
+    {"nonlinear": "second-order", "spreading": "hasselmann", "wind_speed": 12, "extent": 640},
+])
+def test_a_prepared_sea_gives_generate_at_any_time_in_any_order(extra):
+    # Sea(...).frame(t) is generate(..., time=t) bit for bit, asked out of order, maps
+    # included; a looping second-order sea's pairs are summed once for every frame.
+    keys = dict(method="fft", spectrum="pierson-moskowitz", size=48, seed=4, loop_period=10, **extra)
+    maps = ("normal",) if "choppiness" in extra else ()
+    sea = seasynth.Sea(maps=maps, **keys)
+    for t in [7.5, 0.0, 3.25, 17.5]:
+        f = sea.frame(t)
+        g = seasynth.generate(time=t, maps=maps, **keys)
+        assert f.time == t
+        assert np.array_equal(f.height, g.height), f"t = {t}"
+        if maps:
+            assert np.array_equal(f.normal, g.normal), f"t = {t}"
+        assert f.sidecar() == g.sidecar(), f"t = {t}"
+    assert not np.array_equal(sea.frame(0.0).height, sea.frame(1.0).height)
+
+
 def test_write_sequence_writes_the_cli_files(cli, tmp_path):
     p = seasynth.Params(method="fft", spectrum="jonswap", choppiness=1, size=32, seed=2)
     done = seasynth.write_sequence(p, tmp_path / "py", frames=3, formats=["tif", "disp"], start_frame=1)

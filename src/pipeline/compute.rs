@@ -15,16 +15,38 @@ use crate::field::{Synthesis, Synthesizer};
 /// field whose estimated peak memory exceeds the available memory, and a field that is
 /// not finite.
 pub fn synthesize_checked(params: &Params, extras: Extras) -> Result<Synthesis> {
-    let [nx, ny] = params.grid.size.0;
-    crate::limits::check_memory(
-        crate::pipeline::memory::Footprint::of_field(params, extras)
-            .bytes(params.grid_spec().len() as u64, 1),
-        &format!("a {nx}x{ny} {} field", params.method.name()),
-        false,
-    )?;
-    let s = Synthesizer::new(params, extras, false)?.frame(params.time_s);
-    crate::limits::check_finite(&s.grid.stats(), "the synthesized field")?;
-    Ok(s)
+    Prepared::new(params, extras, false)?.frame(params.time_s)
+}
+
+/// One sea prepared for frames at any time (the Python package's `Sea`): its draws and,
+/// for a looping second-order sea, its binned pairs made once. A frame at t is
+/// [`synthesize_checked`] of the same parameters at t, bit for bit.
+pub struct Prepared {
+    synth: Synthesizer,
+}
+
+impl Prepared {
+    /// `params` with the derived fields `extras`, after the memory check; `keep_draws`:
+    /// keep the random draws between frames.
+    pub fn new(params: &Params, extras: Extras, keep_draws: bool) -> Result<Self> {
+        let [nx, ny] = params.grid.size.0;
+        crate::limits::check_memory(
+            crate::pipeline::memory::Footprint::of_field(params, extras)
+                .bytes(params.grid_spec().len() as u64, 1),
+            &format!("a {nx}x{ny} {} field", params.method.name()),
+            false,
+        )?;
+        Ok(Self {
+            synth: Synthesizer::new(params, extras, keep_draws)?,
+        })
+    }
+
+    /// The field at `time_s`, refused when not finite.
+    pub fn frame(&self, time_s: f64) -> Result<Synthesis> {
+        let s = self.synth.frame(time_s);
+        crate::limits::check_finite(&s.grid.stats(), "the synthesized field")?;
+        Ok(s)
+    }
 }
 
 /// The maps of one synthesis, each a row-major float array of the grid: the values of

@@ -8,6 +8,7 @@ whose text is seasynth's own one-line message (`--wind-speed (wind.speed_mps) mu
 
 import os
 import sys
+import threading
 
 # A wheel installed into the add-on itself (pip install --no-deps --target
 # seasynth_addon/_vendor seasynth-*.whl) is found first; otherwise Blender's sys.path
@@ -84,12 +85,33 @@ def resolved(p):
     return p.to_dict()
 
 
+# The seas prepared most recently (parameters, maps, `seasynth.Sea`): scrubbing the
+# timeline asks for frames out of order, and each comes from the prepared sea.
+_SEAS = []
+_SEAS_KEPT = 2
+_SEAS_LOCK = threading.Lock()
+
+
+def _sea(p, maps):
+    with _SEAS_LOCK:
+        for q, m, sea in _SEAS:
+            if m == maps and q == p:
+                return sea
+    sea = _wrap(_module().Sea, p, maps=maps, resample="displacement" not in maps)
+    with _SEAS_LOCK:
+        _SEAS.append((p, maps, sea))
+        del _SEAS[:-_SEAS_KEPT]
+    return sea
+
+
 def frame(p, time_s, maps):
     """The sea at `time_s` seconds, with the extra `maps` ("displacement", "normal",
     "foam"): a frame with `height`, `displacement`, `normal`, `foam` (numpy float32,
     rows along y), `stats` and `sidecar()`. With the displacement the vertices move by
-    it, so the choppy heights are not resampled onto the grid (`resample=False`)."""
-    return _wrap(_module().generate, p, time=time_s, maps=tuple(maps), resample="displacement" not in maps)
+    it, so the choppy heights are not resampled onto the grid (`resample=False`). The
+    frame of a prepared `seasynth.Sea` (the draws, and a looping second-order sea's
+    pairs, made once for the parameters): `generate` at that time, bit for bit."""
+    return _wrap(_sea(p, tuple(maps)).frame, time_s)
 
 
 def write_sequence(p, folder, frames, formats, start_frame, up="z", exr_half=False, exr_compression="zip"):
