@@ -96,10 +96,7 @@ impl HeightMethod for FftSea {
                 NonlinearMethod::Pairs => {
                     let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
                     let so = SecondOrder::new(&setup, q);
-                    let looped = setup
-                        .loop_period_s
-                        .and_then(|period| LoopedBound::new(&so, &setup, period));
-                    match looped {
+                    match LoopedBound::new(&so, &setup) {
                         Some(lb) => Bound::Looped(Box::new(lb)),
                         None => Bound::Pairs(Box::new(so)),
                     }
@@ -128,7 +125,7 @@ impl HeightMethod for FftSea {
 
     fn bytes_per_sample(&self) -> u64 {
         // A second-order sea adds its full-plane bound spectrum (complex f64), a looping
-        // one at most MAX_BINS_PER_CELL complex f64 bins a cell; the fitted method its
+        // one at most MAX_BINS_PER_CELL complex f32 bins a cell; the fitted method its
         // components and about a dozen complex f64 arrays of the grid padded by 3/2 per
         // axis.
         let s = &self.params.spectrum;
@@ -136,7 +133,7 @@ impl HeightMethod for FftSea {
             10
         } else if s.nonlinear_method.is_pairs() {
             let bins = match self.params.motion.loop_period_s {
-                Some(_) => 16 * MAX_BINS_PER_CELL as u64,
+                Some(_) => 8 * MAX_BINS_PER_CELL as u64,
                 None => 0,
             };
             26 + bins

@@ -216,13 +216,30 @@ pub struct SecondOrder {
     pub info: SecondOrderInfo,
 }
 
-/// Every resolved component with energy of `setup`, line by line (kx index ≥ 0, with its
+/// One resolved draw with energy: indices (n, m), E|h̃0|² and h̃0 = ρ e^{iφ}.
+#[derive(Clone, Copy)]
+struct Draw {
+    n: i64,
+    m: i64,
+    p: f64,
+    rho: f64,
+    phi: f64,
+}
+
+impl Draw {
+    /// The ranking key: E|h̃0|² and the indices packed in their order.
+    fn key(&self) -> (f64, u64) {
+        let at = |i: i64| (i + (1 << 31)) as u64;
+        (self.p, at(self.n) << 32 | at(self.m))
+    }
+}
+
+/// Every resolved draw with energy of `setup`, line by line (kx index ≥ 0, with its
 /// mirror line), as `keep` maps it (None: left out).
 fn each_line<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
-    depth: Option<f64>,
-    keep: &(dyn Fn(Component) -> Option<T> + Sync),
+    keep: &(dyn Fn(Draw) -> Option<T> + Sync),
 ) -> Vec<Vec<T>> {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     let per_line: Mutex<Vec<Vec<T>>> = Mutex::new((0..=nx / 2).map(|_| Vec::new()).collect());
@@ -234,10 +251,7 @@ fn each_line<T: Send>(
                 let m = signed_index(idx, ny);
                 let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
                     if rho > 0.0 {
-                        let (kx, ky) = setup.wavevector(n, m);
-                        let mut c = Component::new(kx, ky, rho, phi, depth);
-                        (c.n, c.m, c.p) = (n, m, p);
-                        out.extend(keep(c));
+                        out.extend(keep(Draw { n, m, p, rho, phi }));
                     }
                 };
                 push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
@@ -271,15 +285,23 @@ fn depth_of(d: Dispersion) -> Option<f64> {
     }
 }
 
+/// The resolved indices lo ..= hi of an axis of `len` samples (without the Nyquist index
+/// of an even length).
+#[inline]
+fn resolved_span(len: usize) -> (i64, i64) {
+    let half = (len / 2) as i64;
+    if len % 2 == 0 {
+        (1 - half, half - 1)
+    } else {
+        (-half, half)
+    }
+}
+
 /// n lies on the grid's resolved range (not the Nyquist index of an even length).
 #[inline]
 fn on_grid(n: i64, len: usize) -> bool {
-    let half = (len / 2) as i64;
-    if len % 2 == 0 {
-        n > -half && n < half
-    } else {
-        n >= -half && n <= half
-    }
+    let (lo, hi) = resolved_span(len);
+    n >= lo && n <= hi
 }
 
 impl SecondOrder {
@@ -293,12 +315,8 @@ impl SecondOrder {
         // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
         // packed in their order), sorted in parallel.
         type Key = (f64, u64);
-        let key = |c: &Component| {
-            let at = |i: i64| (i + (1 << 31)) as u64;
-            (c.p, at(c.n) << 32 | at(c.m))
-        };
         let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
-        let mut keys: Vec<Key> = flat(each_line(setup, isa, depth, &|c| Some(key(&c))));
+        let mut keys: Vec<Key> = flat(each_line(setup, isa, &|d| Some(d.key())));
         let available = keys.len();
         keys.par_sort_unstable_by(rank);
         let total: f64 = keys.iter().map(|k| k.0).sum();
@@ -318,8 +336,13 @@ impl SecondOrder {
         // The kept components: those ranked no later than the last kept key.
         let all: Vec<Component> = match last {
             None => Vec::new(),
-            Some(last) => flat(each_line(setup, isa, depth, &|c| {
-                rank(&key(&c), &last).is_le().then_some(c)
+            Some(last) => flat(each_line(setup, isa, &|d| {
+                rank(&d.key(), &last).is_le().then(|| {
+                    let (kx, ky) = setup.wavevector(d.n, d.m);
+                    let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
+                    (c.n, c.m, c.p) = (d.n, d.m, d.p);
+                    c
+                })
             })),
         };
         let info = SecondOrderInfo {

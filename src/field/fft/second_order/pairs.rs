@@ -14,7 +14,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
-use super::{C64, Component, SecondOrder, SpectrumSetup, on_grid, self_kernels};
+use super::{C64, Component, SecondOrder, SpectrumSetup, on_grid, resolved_span, self_kernels};
 use crate::fastmath;
 use crate::grid::signed_index;
 use crate::simd::{Isa, multiversion};
@@ -303,13 +303,7 @@ impl SecondOrder {
         let isa = self.columns.isa;
         let longest = self.lines.iter().map(|r| r.len()).max().unwrap_or(0);
         // The resolved outputs m: lo ..= hi.
-        let ny = self.ny;
-        let half = (ny / 2) as i64;
-        let (lo, hi) = if ny % 2 == 0 {
-            (1 - half, half - 1)
-        } else {
-            (-half, half)
-        };
+        let (lo, hi) = resolved_span(self.ny);
         let mut kv = vec![0.0; longest];
         let mut vre = vec![0.0; longest];
         let mut vim = vec![0.0; longest];

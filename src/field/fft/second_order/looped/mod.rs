@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex32;
 
 use super::pairs::Amps;
-use super::{C64, SecondOrder, SecondOrderInfo, SpectrumSetup, add_plane, on_grid};
+use super::{C64, SecondOrder, SecondOrderInfo, SpectrumSetup, add_plane, on_grid, resolved_span};
 use crate::field::fft::HalfSpectrum;
 use crate::grid::signed_index;
 
@@ -111,24 +111,19 @@ pub struct LoopedBound {
     pub info: SecondOrderInfo,
 }
 
-/// ν_i of every component of `so`, and of every kx line (offset by nx) the spans of m and ν.
+/// ν_i of every component of `so` (of `setup`, looping with period `period`), and of
+/// every kx line (offset by nx) the spans of m and ν.
 fn line_spans(
     so: &SecondOrder,
     setup: &SpectrumSetup,
     period: f64,
 ) -> (Vec<i64>, Vec<(Span, Span)>) {
     let base = TAU / period;
+    // The looping ω of the linear sea ([`SpectrumSetup::omega`]) is ν·(2π/T) exactly.
     let nus: Vec<i64> = so
         .comps
         .iter()
-        .map(|c| {
-            let w = setup.dispersion.omega((c.kx * c.kx + c.ky * c.ky).sqrt());
-            if w == 0.0 {
-                0
-            } else {
-                (w / base).round().max(1.0) as i64
-            }
-        })
+        .map(|c| (setup.omega(c.kx, c.ky) / base).round() as i64)
         .collect();
     let spans = so
         .lines
@@ -172,12 +167,7 @@ fn row_window(so: &SecondOrder, spans: &[(Span, Span)], nq: i64) -> (Span, Span)
             nu = nu.join(va.plus(vb, sign));
         }
     }
-    let half = (so.ny / 2) as i64;
-    let (lo, hi) = if so.ny % 2 == 0 {
-        (1 - half, half - 1)
-    } else {
-        (-half, half)
-    };
+    let (lo, hi) = resolved_span(so.ny);
     (m.clip(lo, hi), nu)
 }
 
@@ -202,9 +192,10 @@ fn add_binned(
 }
 
 impl LoopedBound {
-    /// The bins of `so` (components of `setup`, its time not used) for the loop period
-    /// `period`, s; None when they would exceed [`MAX_BINS_PER_CELL`] per cell.
-    pub fn new(so: &SecondOrder, setup: &SpectrumSetup, period: f64) -> Option<Self> {
+    /// The bins of `so` (components of `setup`, its time not used) for `setup`'s loop
+    /// period; None without one, or when they would exceed [`MAX_BINS_PER_CELL`] per cell.
+    pub fn new(so: &SecondOrder, setup: &SpectrumSetup) -> Option<Self> {
+        let period = setup.loop_period_s?;
         let (nx, ny) = (so.nx, so.ny);
         let (nus, spans) = line_spans(so, setup, period);
         let windows: Vec<(Span, Span)> = (0..nx)
@@ -326,6 +317,7 @@ impl LoopedBound {
     }
 
     /// The bins held, complex values.
+    #[cfg(test)]
     pub fn bins(&self) -> usize {
         self.rows.iter().map(|r| r.z.len()).sum()
     }
