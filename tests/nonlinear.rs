@@ -265,12 +265,16 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
             "frame {k} and generate --time {t}"
         );
     }
-    // Without a loop every frame sums its pairs: animate says so, and how to avoid it.
-    let unlooped: Vec<&str> = sea
+    // Without a loop the exact pair sum sums its pairs at every frame: animate says so, and
+    // how to avoid it (the default `auto` takes the fitted method on this deep sea).
+    let mut unlooped: Vec<&str> = sea
         .iter()
         .copied()
         .filter(|a| !matches!(*a, "--loop-period" | "10" | "-q"))
         .collect();
+    let err = stderr_of_quiet_free(dir.path(), &unlooped);
+    assert!(!err.contains("note: without --loop-period"), "{err}");
+    unlooped.extend(["--set", "spectrum.nonlinear_method=pairs"]);
     let stderr_of = |out: &str, args: &[&str]| {
         let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", out];
         a.extend(args);
@@ -287,6 +291,14 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
         .as_u64()
         .expect("loop_multiples in the sidecar");
     assert!(multiples >= 3, "{multiples}");
+}
+
+/// The stderr of a two-frame `animate` of `args` in `dir`.
+fn stderr_of_quiet_free(dir: &std::path::Path, args: &[&str]) -> String {
+    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "a"];
+    a.extend(args);
+    let run = common::seasynth().current_dir(dir).args(&a).output();
+    String::from_utf8(run.unwrap().stderr).unwrap()
 }
 
 #[test]
@@ -317,7 +329,9 @@ fn the_fitted_method_pairs_every_component_with_tayfun_skewness_at_any_thread_co
         assert_eq!(info.method.as_deref(), Some("fitted"));
         let e = info.estimated_rel_rms_error.unwrap();
         assert!(e > 0.0 && e < ESTIMATE_MAX, "estimate {e}");
-        assert_eq!(info.components, info.components_available);
+        // The pair sum's components: those of the default fraction of the variance.
+        assert!(info.components < info.components_available);
+        assert!((info.variance_fraction_kept - 0.99).abs() < 1e-3);
         let (sl, _, sigma) = moments(&gl.data);
         let (ss, _, sigma2) = moments(&syn.grid.data);
         let a = analyze(&gl, None);
@@ -377,12 +391,16 @@ fn the_fitted_method_pairs_every_component_with_tayfun_skewness_at_any_thread_co
     }
     let side = common::json_file(&dirs[0].path().join("f.json"));
     assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
-    let dir = tempfile::tempdir().unwrap();
-    let mut a = args.to_vec();
-    a.extend(["--set", "spectrum.nonlinear_fraction=0.9"]);
-    let err = common::run_exit2(dir.path(), &a);
-    assert!(err.contains("nonlinear_fraction"), "{err}");
-    assert!(common::names_in(dir.path()).is_empty(), "no file left");
+    // q = 1: every component.
+    let mut a: Vec<&str> = args
+        .iter()
+        .map(|x| if *x == "f.tif" { "all.tif" } else { x })
+        .collect();
+    a.extend(["--set", "spectrum.nonlinear_fraction=1"]);
+    common::run_ok(dirs[0].path(), &a);
+    let side = common::json_file(&dirs[0].path().join("all.json"));
+    let so = &side["synthesis"]["second_order"];
+    assert_eq!(so["components"], so["components_available"]);
 }
 
 /// `bench --second-order` times the linear sea, the pair sum and the fitted method at each
@@ -408,34 +426,38 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
     for row in [
         "linear sea (PM 15 m/s, 2048 m)",
         "second order, pair sum q = 0.99",
-        "second order, fitted, every wave",
+        "second order, fitted q = 0.99",
+        "48 frames, linear",
+        "48 frames, second order (auto)",
         "48 frames, linear, loop 20 s",
         "48 frames, pair sum, loop 20 s",
     ] {
         assert!(out.contains(row), "no row {row:?}:\n{out}");
     }
+    let numbers = |line: &str| -> Vec<f64> {
+        line.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .filter_map(|s| s.parse().ok())
+            .collect()
+    };
     let line = out
         .lines()
         .find(|l| l.contains("second order ÷ linear field"))
         .unwrap_or_else(|| panic!("no ratio line:\n{out}"));
-    let ratios: Vec<f64> = line
-        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
-        .filter_map(|s| s.parse().ok())
-        .collect();
+    let ratios = numbers(line);
     assert_eq!(ratios.len(), 2, "{line}");
     for r in ratios {
         assert!(r.is_finite() && r >= 1.0, "{line}");
     }
-    // The looping sequence of each, and their ratio (a number: at 64² both take a few
-    // milliseconds, so its size is noise here).
+    // The sequences' ratios (numbers: at 64² they take a few milliseconds, so their size
+    // is noise here).
     let line = out
         .lines()
-        .find(|l| l.contains("looping 48-frame sequence, second order ÷ linear"))
+        .find(|l| l.contains("48-frame sequence, second order ÷ linear"))
         .unwrap_or_else(|| panic!("no sequence ratio line:\n{out}"));
-    let ratio: f64 = line
-        .rsplit(": ")
-        .next()
-        .and_then(|s| s.trim_end_matches('×').parse().ok())
-        .unwrap_or_else(|| panic!("no ratio in {line:?}"));
-    assert!(ratio.is_finite() && ratio > 0.0, "{line}");
+    let (_, after) = line.split_once(": ").unwrap_or_else(|| panic!("{line}"));
+    let ratios = numbers(after);
+    assert_eq!(ratios.len(), 2, "{line}");
+    for r in ratios {
+        assert!(r.is_finite() && r > 0.0, "{line}");
+    }
 }

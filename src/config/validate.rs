@@ -293,14 +293,6 @@ impl Params {
                 ));
             }
         }
-        if self.spectrum.nonlinear_fraction.is_some() && !self.spectrum.nonlinear_method.is_pairs()
-        {
-            return Err(err(
-                "spectrum.nonlinear_fraction",
-                "unset with spectrum.nonlinear_method = fitted (it pairs every component)",
-                self.spectrum.nonlinear_fraction.unwrap_or(0.0),
-            ));
-        }
         if self.spectrum.nonlinear == Nonlinear::Linear {
             return Ok(());
         }

@@ -269,10 +269,6 @@ pub(super) fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
     Ok(())
 }
 
-/// The grid above which `bench --second-order` leaves the fitted method out: its padded
-/// double-precision fields take about 0.5 GB at 1024² and grow with the grid.
-const FITTED_MAX: usize = 2048;
-
 /// Second-order seas beside the linear one (`bench --second-order`): Pierson–Moskowitz,
 /// 15 m/s, Hasselmann spreading, n² over 2048 m (so the paired components do not grow
 /// with n), each the whole synthesis of one field (the fit included), as ratios to the
@@ -307,61 +303,53 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
             synthesize_checked(p, Extras::default()).expect("checked above")
         }))
     };
+    let so = ("nonlinear", "second-order");
     let linear = run(&sea(&[])?, repeats)?;
-    let pairs = run(&sea(&[("nonlinear", "second-order")])?, repeats.min(3))?;
-    let fitted = if n <= FITTED_MAX {
-        let p = sea(&[
-            ("nonlinear", "second-order"),
-            ("spectrum.nonlinear_method", "fitted"),
-        ])?;
-        Some(run(&p, repeats.min(3))?)
-    } else {
-        None
-    };
-    // A looping sequence: the pair sum binned once by the pairs' multiples of 2π/T, each
-    // frame a sum over them (frames computed, not written).
+    let pairs = run(
+        &sea(&[so, ("spectrum.nonlinear_method", "pairs")])?,
+        repeats.min(3),
+    )?;
+    let fitted = run(
+        &sea(&[so, ("spectrum.nonlinear_method", "fitted")])?,
+        repeats,
+    )?;
+    // Sequences of 48 frames (computed, not written): unlooped, the default method (the
+    // fitted one on this deep sea) at each frame; looping, the pair sum binned once by
+    // the pairs' multiples of 2π/T, each frame a sum over them.
     let sequence = |extra: &[(&str, &str)]| -> Result<Duration> {
-        let mut sets = vec![("loop-period", "20")];
-        sets.extend(extra);
-        let p = sea(&sets)?;
+        let p = sea(extra)?;
         let t = Instant::now();
         crate::pipeline::sequence::each_frame(&p, LOOP_FRAMES, Extras::default(), false, |_| true)?;
         Ok(t.elapsed())
     };
-    let linear_loop = sequence(&[])?;
-    let pairs_loop = sequence(&[("nonlinear", "second-order")])?;
+    let loop20 = ("loop-period", "20");
+    let linear_seq = sequence(&[])?;
+    let default_seq = sequence(&[so])?;
+    let linear_loop = sequence(&[loop20])?;
+    let pairs_loop = sequence(&[loop20, so])?;
     print_row("linear sea (PM 15 m/s, 2048 m)", linear, bare, NAME_WIDTH);
     print_row("second order, pair sum q = 0.99", pairs, bare, NAME_WIDTH);
+    print_row("second order, fitted q = 0.99", fitted, bare, NAME_WIDTH);
     let per = |d: Duration| d.as_secs_f64() / linear.as_secs_f64();
-    match fitted {
-        Some(f) => {
-            print_row("second order, fitted, every wave", f, bare, NAME_WIDTH);
-            println!(
-                "  second order ÷ linear field: pair sum {:.0}×, fitted {:.0}×",
-                per(pairs),
-                per(f)
-            );
-        }
-        None => println!(
-            "  second order ÷ linear field: pair sum {:.0}× (fitted left out above {FITTED_MAX}²: its padded fields need several GB)",
-            per(pairs)
-        ),
-    }
-    print_row(
-        "48 frames, linear, loop 20 s",
-        linear_loop,
-        bare,
-        NAME_WIDTH,
-    );
-    print_row(
-        "48 frames, pair sum, loop 20 s",
-        pairs_loop,
-        bare,
-        NAME_WIDTH,
-    );
     println!(
-        "  looping {LOOP_FRAMES}-frame sequence, second order ÷ linear: {:.1}×",
-        pairs_loop.as_secs_f64() / linear_loop.as_secs_f64()
+        "  second order ÷ linear field: pair sum {:.1}×, fitted {:.1}×",
+        per(pairs),
+        per(fitted)
+    );
+    let rows = [
+        ("48 frames, linear", linear_seq),
+        ("48 frames, second order (auto)", default_seq),
+        ("48 frames, linear, loop 20 s", linear_loop),
+        ("48 frames, pair sum, loop 20 s", pairs_loop),
+    ];
+    for (name, d) in rows {
+        print_row(name, d, bare, NAME_WIDTH);
+    }
+    let ratio = |a: Duration, b: Duration| a.as_secs_f64() / b.as_secs_f64();
+    println!(
+        "  {LOOP_FRAMES}-frame sequence, second order ÷ linear: {:.1}× (fitted), looping {:.1}× (pair sum binned)",
+        ratio(default_seq, linear_seq),
+        ratio(pairs_loop, linear_loop)
     );
     Ok(())
 }

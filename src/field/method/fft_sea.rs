@@ -3,7 +3,9 @@
 
 use super::spectral::Spectral;
 use super::{HeightMethod, finish};
-use crate::config::{DEFAULT_NONLINEAR_FRACTION, Nonlinear, NonlinearMethod, Params};
+use crate::config::{
+    AUTO_MAX_ESTIMATE, DEFAULT_NONLINEAR_FRACTION, Nonlinear, NonlinearMethod, Params,
+};
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::{Extras, Surface};
@@ -24,8 +26,8 @@ struct Ready {
     spectral: Spectral,
     /// The random draws, when kept between frames.
     amplitudes: Option<Amplitudes>,
-    /// The bound waves of a second-order sea.
-    second_order: Option<Bound>,
+    /// The bound waves of a second-order sea, the method's name and why `auto` chose it.
+    second_order: Option<(Bound, &'static str, Option<String>)>,
 }
 
 /// How the bound waves are evaluated (`spectrum.nonlinear_method`).
@@ -62,12 +64,19 @@ impl FftSea {
             Some(a) => a.frame(&setup),
             None => fft::synthesize_spectrum(&setup),
         };
-        let bound = ready.second_order.as_ref().map(|b| match b {
-            Bound::Pairs(so) => so.add_to(&setup, &mut half),
-            Bound::Looped(lb) => lb.add_to(&setup, &mut half),
-            Bound::Fitted(tb, info) => {
-                tb.add_to(&setup, &mut half);
-                info.clone()
+        let bound = ready.second_order.as_ref().map(|(b, method, reason)| {
+            let info = match b {
+                Bound::Pairs(so) => so.add_to(&setup, &mut half),
+                Bound::Looped(lb) => lb.add_to(&setup, &mut half),
+                Bound::Fitted(tb, info) => {
+                    tb.add_to(&setup, &mut half);
+                    info.clone()
+                }
+            };
+            SecondOrderInfo {
+                method: Some((*method).into()),
+                method_reason: reason.clone(),
+                ..info
             }
         });
         let h0max_m = half.h0max_m;
@@ -92,18 +101,51 @@ impl HeightMethod for FftSea {
         let s = &self.params.spectrum;
         let second_order = (s.nonlinear == Nonlinear::SecondOrder).then(|| {
             let setup = spectral.setup(0.0);
+            let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
+            let so = SecondOrder::new(&setup, q);
+            // The exact pair sum, binned once when the sea loops.
+            let pairs = |so: SecondOrder| match LoopedBound::new(&so, &setup) {
+                Some(lb) => Bound::Looped(Box::new(lb)),
+                None => Bound::Pairs(Box::new(so)),
+            };
+            let fitted = |so: SecondOrder, fit| {
+                let (tb, info) = TransformBound::with_fit(&setup, so, fit);
+                Bound::Fitted(Box::new(tb), info)
+            };
             match s.nonlinear_method {
-                NonlinearMethod::Pairs => {
-                    let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
-                    let so = SecondOrder::new(&setup, q);
-                    match LoopedBound::new(&so, &setup) {
-                        Some(lb) => Bound::Looped(Box::new(lb)),
-                        None => Bound::Pairs(Box::new(so)),
-                    }
-                }
+                NonlinearMethod::Pairs => (pairs(so), "pairs", None),
                 NonlinearMethod::Fitted => {
-                    let (tb, info) = TransformBound::for_setup(&setup);
-                    Bound::Fitted(Box::new(tb), info)
+                    let fit = TransformBound::fit_for(&setup, &so);
+                    (fitted(so, fit), "fitted", None)
+                }
+                NonlinearMethod::Auto if self.params.motion.loop_period_s.is_some() => {
+                    let bound = pairs(so);
+                    let why = match bound {
+                        Bound::Looped(_) => "a looping sea: its pairs summed once for every time",
+                        _ => "a looping sea: the exact pairs at every time (the loop is too long to bin)",
+                    };
+                    (bound, "pairs", Some(format!("auto: {why}")))
+                }
+                NonlinearMethod::Auto => {
+                    let fit = TransformBound::fit_for(&setup, &so);
+                    let e = fit.rel_rms_error;
+                    let pct = |x: f64| format!("{:.2} %", 100.0 * x);
+                    if e <= AUTO_MAX_ESTIMATE {
+                        let why = format!(
+                            "auto: the fitted kernels' estimated error {} is within {}",
+                            pct(e),
+                            pct(AUTO_MAX_ESTIMATE)
+                        );
+                        (fitted(so, fit), "fitted", Some(why))
+                    } else {
+                        let why = format!(
+                            "auto: the fitted kernels' estimated error {} exceeds {} (shallow \
+                             water's near-resonant pairs): the exact pairs",
+                            pct(e),
+                            pct(AUTO_MAX_ESTIMATE)
+                        );
+                        (pairs(so), "pairs", Some(why))
+                    }
                 }
             }
         });
@@ -125,20 +167,24 @@ impl HeightMethod for FftSea {
 
     fn bytes_per_sample(&self) -> u64 {
         // A second-order sea adds its full-plane bound spectrum (complex f64), a looping
-        // one at most MAX_BINS_PER_CELL complex f32 bins a cell; the fitted method its
-        // components and about a dozen complex f64 arrays of the grid padded by 3/2 per
-        // axis.
+        // one at most MAX_BINS_PER_CELL complex f32 bins a cell; the fitted method of every
+        // component its components and about a dozen complex f64 arrays of the grid padded
+        // by 3/2 per axis.
         let s = &self.params.spectrum;
         if s.nonlinear.is_linear() {
             10
-        } else if s.nonlinear_method.is_pairs() {
+        } else if !matches!(s.nonlinear_method, NonlinearMethod::Fitted) {
             let bins = match self.params.motion.loop_period_s {
                 Some(_) => 8 * MAX_BINS_PER_CELL as u64,
                 None => 0,
             };
             26 + bins
-        } else {
+        } else if s.nonlinear_fraction.is_some_and(|q| q >= 1.0) {
             10 + 88 + 12 * 16 * 9 / 4
+        } else {
+            // The components of q < 1 reach a part of the grid: the padded fields cover
+            // that part (bounded here by the pair sum's full plane).
+            26
         }
     }
 

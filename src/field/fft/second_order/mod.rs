@@ -188,13 +188,15 @@ pub struct SecondOrderInfo {
     pub sum_pairs_dropped: u64,
     pub difference_pairs_dropped: u64,
     pub pairs: u64,
-    /// `fitted` when the bound waves come from the fitted kernels by transforms (absent:
-    /// the exact pair sum).
+    /// `pairs` (the exact pair sum) or `fitted` (the fitted kernels by transforms).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub method: Option<String>,
     /// The fitted kernels' estimated rms error, as a fraction of the bound waves' rms.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_rel_rms_error: Option<f64>,
+    /// Why `nonlinear_method = auto` chose the method (absent: it was asked for).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method_reason: Option<String>,
     /// With a loop period: the multiples ν of 2π/T the pairs turn with, when the pair
     /// sum is binned by them once for every time (absent: summed at each time).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -235,23 +237,23 @@ impl Draw {
 }
 
 /// Every resolved draw with energy of `setup`, line by line (kx index ≥ 0, with its
-/// mirror line), as `keep` maps it (None: left out).
-fn each_line<T: Send>(
+/// mirror line): what `line` makes of each line's draws, in line order.
+fn lines_of<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
-    keep: &(dyn Fn(Draw) -> Option<T> + Sync),
-) -> Vec<Vec<T>> {
+    line: &(dyn Fn(&[Draw]) -> T + Sync),
+) -> Vec<T> {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
-    let per_line: Mutex<Vec<Vec<T>>> = Mutex::new((0..=nx / 2).map(|_| Vec::new()).collect());
+    let per_line: Mutex<Vec<Option<T>>> = Mutex::new((0..=nx / 2).map(|_| None).collect());
     build_lines(setup, |n, _kx, buf, _line| {
         draw_line(setup, isa, n, buf);
-        let mut out = Vec::new();
+        let mut draws = Vec::new();
         for r in resolved_ranges(n, nx, ny) {
             for idx in r {
                 let m = signed_index(idx, ny);
                 let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
                     if rho > 0.0 {
-                        out.extend(keep(Draw { n, m, p, rho, phi }));
+                        draws.push(Draw { n, m, p, rho, phi });
                     }
                 };
                 push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
@@ -261,12 +263,66 @@ fn each_line<T: Send>(
                 }
             }
         }
-        per_line.lock().expect("no panics while holding the lock")[n as usize] = out;
+        let out = line(&draws);
+        per_line.lock().expect("no panics while holding the lock")[n as usize] = Some(out);
         0.0
     });
     per_line
         .into_inner()
         .expect("no panics while holding the lock")
+        .into_iter()
+        .map(|l| l.expect("every line visited"))
+        .collect()
+}
+
+/// Every resolved draw with energy of `setup`, line by line, as `keep` maps it (None:
+/// left out).
+fn each_line<T: Send>(
+    setup: &SpectrumSetup,
+    isa: Isa,
+    keep: &(dyn Fn(Draw) -> Option<T> + Sync),
+) -> Vec<Vec<T>> {
+    lines_of(setup, isa, &|draws| {
+        draws.iter().filter_map(|&d| keep(d)).collect()
+    })
+}
+
+/// The octave of a positive E|h̃0|² (its binary exponent): the ranking's coarse buckets.
+#[inline]
+fn octave(p: f64) -> usize {
+    (p.to_bits() >> 52) as usize & 0x7ff
+}
+
+/// The variance E|h̃0|² of `setup`'s draws by octave (sum and count), and their total
+/// (summed line by line, in line order).
+fn octaves(setup: &SpectrumSetup, isa: Isa) -> (Vec<(f64, usize)>, f64) {
+    let lines = lines_of(setup, isa, &|draws| {
+        let mut dense = vec![(0.0f64, 0usize); 0x800];
+        let mut total = 0.0;
+        for d in draws {
+            let b = &mut dense[octave(d.p)];
+            b.0 += d.p;
+            b.1 += 1;
+            total += d.p;
+        }
+        let sparse: Vec<(usize, f64, usize)> = dense
+            .into_iter()
+            .enumerate()
+            .filter(|(_, b)| b.1 > 0)
+            .map(|(o, b)| (o, b.0, b.1))
+            .collect();
+        (sparse, total)
+    });
+    let mut by_octave = vec![(0.0f64, 0usize); 0x800];
+    let mut total = 0.0;
+    for (sparse, line_total) in lines {
+        for (o, sum, count) in sparse {
+            by_octave[o].0 += sum;
+            by_octave[o].1 += count;
+        }
+        total += line_total;
+    }
+    (by_octave, total)
 }
 
 /// The lines' items in one vector, each line freed once moved (no regrowth).
@@ -316,23 +372,46 @@ impl SecondOrder {
         // packed in their order), sorted in parallel.
         type Key = (f64, u64);
         let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
-        let mut keys: Vec<Key> = flat(each_line(setup, isa, &|d| Some(d.key())));
-        let available = keys.len();
-        keys.par_sort_unstable_by(rank);
-        let total: f64 = keys.iter().map(|k| k.0).sum();
-        let mut kept = 0.0;
-        let mut count = 0usize;
-        for k in &keys {
-            // q = 1 keeps every component (the sum of the largest reaches the total in
-            // floating point before the smallest are added).
-            if fraction < 1.0 && kept >= fraction * total {
-                break;
+        // Only the candidates are ranked: the draws of the octaves that reach the fraction
+        // of the total, and one octave below them (a margin far beyond the rounding of the
+        // octaves' sums); all of them at q = 1, or if the margin fell short.
+        let (by_octave, total) = octaves(setup, isa);
+        let available = by_octave.iter().map(|b| b.1).sum();
+        let mut floor = 0;
+        if fraction < 1.0 {
+            let mut acc = 0.0;
+            for o in (0..by_octave.len()).rev() {
+                acc += by_octave[o].0;
+                if acc >= fraction * total {
+                    floor = o.saturating_sub(1);
+                    break;
+                }
             }
-            kept += k.0;
-            count += 1;
         }
-        let last = count.checked_sub(1).map(|i| keys[i]);
-        drop(keys);
+        let select = |floor: usize| {
+            let mut keys: Vec<Key> = flat(each_line(setup, isa, &|d| {
+                (octave(d.p) >= floor).then(|| d.key())
+            }));
+            keys.par_sort_unstable_by(rank);
+            let mut kept = 0.0;
+            let mut count = 0usize;
+            for k in &keys {
+                // q = 1 keeps every component (the sum of the largest reaches the total in
+                // floating point before the smallest are added).
+                if fraction < 1.0 && kept >= fraction * total {
+                    break;
+                }
+                kept += k.0;
+                count += 1;
+            }
+            let reached = fraction >= 1.0 || kept >= fraction * total || floor == 0;
+            reached.then(|| (kept, count.checked_sub(1).map(|i| keys[i])))
+        };
+        let (kept, last) = select(floor)
+            .or_else(|| select(0))
+            .expect("every draw reaches the fraction");
+        // (Every draw kept: the whole variance, whatever the order of the sums.)
+        let kept = if fraction >= 1.0 { total } else { kept };
         // The kept components: those ranked no later than the last kept key.
         let all: Vec<Component> = match last {
             None => Vec::new(),

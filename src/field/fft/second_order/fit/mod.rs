@@ -38,9 +38,9 @@
 //! Every term of K̃ is then a product w(k_i)·w′(k_j)·h(q): two weighted linear fields
 //! multiplied in physical space, one forward transform, a multiplication by h(q).
 //! Measured against the exact pair sum (`transform/tests.rs`), the error is below 1 % of
-//! η2's rms in deep water and 1.7–2.8 % at depths of 0.1–0.05 peak wavelengths, where the
-//! sum term's near-resonance of shallow water is not resolved; the exact pair sum stays
-//! the default.
+//! η2's rms in deep water and down to 0.2 λp of depth, and 1.4–2.8 % at depths of
+//! 0.1–0.05 peak wavelengths, where the sum term's near-resonance of shallow water is not
+//! resolved: there the default `auto` keeps the exact pair sum (the estimate decides).
 
 use crate::rng::mix64;
 use crate::spectrum::{Dispersion, Spectrum};
@@ -169,14 +169,36 @@ impl Box2 {
     }
 }
 
-/// The polar sample of the spectrum inside `bounds`: waves and their weights
-/// (∝ expected variance).
+/// Where the fit's pairs come from and land: the box of the paired waves, the box of the
+/// outputs kept, and the least E|h̃0|² of a paired cell (0: every wave of the box).
+#[derive(Debug, Clone, Copy)]
+pub struct Region {
+    pub waves: Box2,
+    pub outputs: Box2,
+    pub floor: f64,
+}
+
+impl Region {
+    /// Every resolved wave of `setup`'s grid, every resolved output.
+    pub fn of(setup: &super::SpectrumSetup) -> Self {
+        let b = Box2::of(setup);
+        Self {
+            waves: b,
+            outputs: b,
+            floor: 0.0,
+        }
+    }
+}
+
+/// The polar sample of the spectrum in `region` (inside its waves' box, at or above its
+/// floor): waves and their weights (∝ expected variance).
 fn spectrum_sample(
     spectrum: &dyn Spectrum,
     dispersion: Dispersion,
-    bounds: Box2,
+    region: Region,
     dk: (f64, f64),
 ) -> (Vec<Component>, Vec<f64>) {
+    let bounds = region.waves;
     let depth = match dispersion {
         Dispersion::Deep => None,
         Dispersion::Finite { depth_m } => Some(depth_m),
@@ -197,7 +219,11 @@ fn spectrum_sample(
             if !bounds.contains(kx, ky) {
                 continue;
             }
-            let density = spectrum.amplitude_variance(kx, ky, dk.0, dk.1) / (dk.0 * dk.1);
+            let cell = spectrum.amplitude_variance(kx, ky, dk.0, dk.1);
+            if cell < region.floor {
+                continue;
+            }
+            let density = cell / (dk.0 * dk.1);
             let area = k * (r1 - r0) * std::f64::consts::TAU / SAMPLE_ANGLES as f64;
             let w = density * area;
             if w > 0.0 && w.is_finite() {
@@ -250,6 +276,9 @@ fn uniform(t: u64, salt: u64) -> (f64, f64) {
 #[inline]
 fn hats2(nodes: &[f64], na: usize, qx: f64, qy: f64) -> [(usize, f64); 4] {
     let h = hats(nodes, qx.hypot(qy));
+    if na == 1 {
+        return [(h[0].0, h[0].1), (h[1].0, h[1].1), (0, 0.0), (0, 0.0)];
+    }
     let a = qy.atan2(qx).rem_euclid(std::f64::consts::PI) / std::f64::consts::PI * na as f64;
     let i0 = (a.floor() as usize).min(na - 1);
     let f = a - i0 as f64;
@@ -301,19 +330,20 @@ fn basis(a: &Component, b: &Component, s_ref: f64, term: usize, t: f64) -> [f64;
 }
 
 impl KernelFit {
-    /// Fits the coefficients to the pairs of `spectrum` on a grid with resolved box
-    /// `bounds` and cell `dk` (deterministic: fixed draws).
+    /// Fits the coefficients to the pairs of `spectrum` in `region` on a grid of cell `dk`
+    /// (deterministic: fixed draws).
     pub fn new(
         spectrum: &dyn Spectrum,
         dispersion: Dispersion,
-        bounds: Box2,
+        region: Region,
         dk: (f64, f64),
     ) -> Self {
         let depth = match dispersion {
             Dispersion::Deep => None,
             Dispersion::Finite { depth_m } => Some(depth_m),
         };
-        let (waves, weights) = spectrum_sample(spectrum, dispersion, bounds, dk);
+        let (waves, weights) = spectrum_sample(spectrum, dispersion, region, dk);
+        let bounds = region.outputs;
         let q_max = bounds.kx_max.hypot(bounds.ky_max);
         let (qn_count, na) = (Q_NODES, ANGLE_NODES);
         let nodes: Vec<f64> = (0..qn_count)
@@ -353,8 +383,9 @@ impl KernelFit {
             })
         };
         let dim = qn_count * na * nb;
-        let mut coef = [empty(), empty()];
-        for (term, sign) in [(0usize, 1.0f64), (1, -1.0)] {
+        // The two terms' normal equations, each summed in its draws' order (one task a
+        // term: the same sums at any thread count).
+        let solve = |term: usize, sign: f64| {
             let mut ata = vec![0.0; dim * dim];
             let mut atb = vec![0.0; dim];
             for (a, b, sp) in pairs(2 * term as u64, sign) {
@@ -363,7 +394,7 @@ impl KernelFit {
                 let mut idx = [0usize; 64];
                 let mut val = [0.0f64; 64];
                 let mut n = 0;
-                for &(node, hw) in &h {
+                for &(node, hw) in h.iter().filter(|h| h.1 != 0.0) {
                     for (l, &p) in phi.iter().enumerate() {
                         idx[n] = node * nb + l;
                         val[n] = hw * p * sp.num;
@@ -378,12 +409,14 @@ impl KernelFit {
                 }
             }
             let sol = solve_ridge(&mut ata, &mut atb, dim);
-            for node in 0..qn_count * na {
-                for l in 0..nb {
-                    coef[term][node][l] = sol[node * nb + l];
-                }
+            let mut c = empty();
+            for (node, row) in c.iter_mut().enumerate() {
+                row.copy_from_slice(&sol[node * nb..(node + 1) * nb]);
             }
-        }
+            c
+        };
+        let (sum_c, diff_c) = rayon::join(|| solve(0, 1.0), || solve(1, -1.0));
+        let coef = [sum_c, diff_c];
         let mut fit = Self {
             s_ref,
             nodes,
@@ -392,16 +425,20 @@ impl KernelFit {
             rel_rms_error: 0.0,
             depth,
         };
-        // The error estimate from draws independent of the fit's.
-        let (mut err2, mut tot2) = (0.0, 0.0);
-        for (term, sign) in [(0usize, 1.0f64), (1, -1.0)] {
+        // The error estimate from draws independent of the fit's (a task a term, each
+        // summed in its draws' order).
+        let estimate = |term: usize, sign: f64| {
+            let (mut err2, mut tot2) = (0.0, 0.0);
             for (a, b, sp) in pairs(2 * term as u64 + 1, sign) {
                 let approx = fit.g(term, a, b, sp.qx, sp.qy) * sp.num;
                 let k = 0.25 * (sp.sep + sp.ns);
                 err2 += (0.25 * (sp.ns - approx)).powi(2);
                 tot2 += k * k;
             }
-        }
+            (err2, tot2)
+        };
+        let (s, d) = rayon::join(|| estimate(0, 1.0), || estimate(1, -1.0));
+        let (err2, tot2) = (s.0 + d.0, s.1 + d.1);
         fit.rel_rms_error = if tot2 > 0.0 {
             (err2 / tot2).sqrt()
         } else {

@@ -1,12 +1,15 @@
 //! The bound waves of the fitted kernels ([`super::fit`]) by transforms: each term of
 //! K̃ = ¼[B + R_i + R_j + (S·A + 2T·B)·G̃] is a product of two weighted linear fields in
 //! physical space, one forward transform and a multiplication by a function of the output
-//! wavevector. Exactly the pair sum of K̃ (up to rounding), at the cost of a few dozen
-//! transforms of a grid padded by 3/2 per axis, so that no sum or difference of two
-//! resolved wavevectors wraps onto a kept output. The non-default
-//! `spectrum.nonlinear_method = "fitted"` (see docs/methods.md for its error and cost).
+//! wavevector. Exactly the pair sum of K̃ (up to rounding) over the same components as the
+//! pair sum's (the strongest, carrying `nonlinear_fraction` of the variance), at the cost
+//! of a few dozen transforms of a grid that covers only their box |n| ≤ k_x, |m| ≤ k_y,
+//! padded to more than 2k + min(2k, the grid's edge) per axis so that no sum or
+//! difference of two of them wraps onto a kept output (3/2 of the grid when they fill
+//! it). `spectrum.nonlinear_method = "fitted"`, and the default `auto`'s choice in deep
+//! water (see docs/methods.md for its error and cost).
 //!
-//! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over every component (b_i = a_i e^{i(φ_i − ω_i t)})
+//! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over the components (b_i = a_i e^{i(φ_i − ω_i t)})
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
 //! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
 
@@ -16,18 +19,104 @@ use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, resonance_t};
+use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, NB, Region, resonance_t};
 use super::{
     C64, Component, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
-    self_kernels,
+    resolved_span, self_kernels,
 };
 use crate::fastmath;
 use crate::grid::signed_index;
 
-/// An even length ≥ 3n/2.
-fn padded(n: usize) -> usize {
-    let p = (3 * n).div_ceil(2);
-    p + p % 2
+/// The smallest even length ≥ n with no prime factor above 5 (a fast transform).
+fn smooth_even(n: usize) -> usize {
+    let smooth = |mut v: usize| {
+        for p in [2, 3, 5] {
+            while v % p == 0 {
+                v /= p;
+            }
+        }
+        v == 1
+    };
+    let mut v = n.max(2);
+    while v % 2 == 1 || !smooth(v) {
+        v += 1;
+    }
+    v
+}
+
+/// The reach of one axis of the paired waves: their largest |index| k, the outputs kept
+/// (|index| ≤ o, o = min(2k, the grid's last resolved index)), and the padded length,
+/// above 2k + o, so that no sum or difference of two waves (|index| ≤ 2k) wraps onto a
+/// kept output (3/2 of the grid when the waves fill it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Reach {
+    k: i64,
+    o: i64,
+    len: usize,
+}
+
+impl Reach {
+    fn of(k: i64, grid: usize) -> Self {
+        let hi = resolved_span(grid).1;
+        let o = (2 * k).min(hi);
+        Self {
+            k,
+            o,
+            len: smooth_even((2 * k + o + 1) as usize),
+        }
+    }
+
+    /// Every sum and difference of two waves lands on the grid.
+    fn all_on_grid(&self) -> bool {
+        self.o == 2 * self.k
+    }
+
+    /// The box edge (rad/m) of indices ≤ `i` on an axis of cell `dk`, or the grid's own
+    /// edge `grid_max` when they reach the grid's last resolved index.
+    fn edge(&self, i: i64, dk: f64, grid_max: f64, grid: usize) -> f64 {
+        if i >= resolved_span(grid).1 {
+            grid_max
+        } else {
+            (i as f64 + 0.5) * dk
+        }
+    }
+}
+
+/// Padded arrays given back for reuse within one evaluation (fresh large allocations
+/// each cost their page faults).
+#[derive(Default)]
+struct Pool(std::sync::Mutex<Vec<Vec<C64>>>);
+
+impl Pool {
+    /// A zeroed array of `len`.
+    fn take(&self, len: usize) -> Vec<C64> {
+        let reused = self
+            .0
+            .lock()
+            .expect("no panics while holding the lock")
+            .pop();
+        match reused {
+            Some(mut v) => {
+                v.clear();
+                v.resize(len, C64::new(0.0, 0.0));
+                v
+            }
+            None => vec![C64::new(0.0, 0.0); len],
+        }
+    }
+
+    fn give(&self, v: Vec<C64>) {
+        self.0
+            .lock()
+            .expect("no panics while holding the lock")
+            .push(v);
+    }
+
+    fn give_all(&self, vs: impl IntoIterator<Item = Vec<C64>>) {
+        for v in vs {
+            self.give(v);
+        }
+    }
 }
 
 /// 2D transforms of a px × py grid (rows of py).
@@ -53,29 +142,58 @@ impl Plan {
         }
     }
 
-    /// Rows of `b` transformed by `fb`, transposed, rows of `a` transformed by `fa`:
+    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows
+    /// of `a` that `wanted` names transformed by `fa` (the others left as they are):
     /// `data` (a rows of b) becomes b rows of a.
-    fn two_d(data: &mut Vec<C64>, a: usize, b: usize, fa: &dyn Fft<f64>, fb: &dyn Fft<f64>) {
-        data.par_chunks_mut(b).for_each(|row| fb.process(row));
+    fn two_d(
+        data: &mut Vec<C64>,
+        (a, b): (usize, usize),
+        (fa, fb): (&dyn Fft<f64>, &dyn Fft<f64>),
+        wanted: &(dyn Fn(usize) -> bool + Sync),
+        pool: &Pool,
+    ) {
+        let zero = C64::new(0.0, 0.0);
+        data.par_chunks_mut(b).for_each(|row| {
+            if row.iter().any(|v| *v != zero) {
+                fb.process(row);
+            }
+        });
         let src = &*data;
-        let mut t = vec![C64::new(0.0, 0.0); a * b];
+        let mut t = pool.take(a * b);
         t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
             for (i, v) in row.iter_mut().enumerate() {
                 *v = src[i * b + j];
             }
         });
-        t.par_chunks_mut(a).for_each(|row| fa.process(row));
-        *data = t;
+        t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
+            if wanted(j) {
+                fa.process(row);
+            }
+        });
+        pool.give(std::mem::replace(data, t));
     }
 
     /// Spectrum (px rows of py, kx by row) → field (py rows of px, y by row).
-    fn inverse(&self, data: &mut Vec<C64>) {
-        Self::two_d(data, self.px, self.py, &*self.inv_x, &*self.inv_y);
+    fn inverse(&self, data: &mut Vec<C64>, pool: &Pool) {
+        let (fa, fb) = (&*self.inv_x, &*self.inv_y);
+        Self::two_d(data, (self.px, self.py), (fa, fb), &|_| true, pool);
     }
 
     /// Field (py rows of px) → spectrum (px rows of py).
-    fn forward(&self, data: &mut Vec<C64>) {
-        Self::two_d(data, self.py, self.px, &*self.fwd_y, &*self.fwd_x);
+    fn forward(&self, data: &mut Vec<C64>, pool: &Pool) {
+        self.forward_rows(data, &|_| true, pool);
+    }
+
+    /// Field (py rows of px) → spectrum (px rows of py), on the kx rows `wanted` names
+    /// (the other rows hold partial sums).
+    fn forward_rows(
+        &self,
+        data: &mut Vec<C64>,
+        wanted: &(dyn Fn(usize) -> bool + Sync),
+        pool: &Pool,
+    ) {
+        let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
+        Self::two_d(data, (self.py, self.px), (fa, fb), wanted, pool);
     }
 }
 
@@ -119,21 +237,51 @@ fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
     })
 }
 
-/// Adds `scale`·Σ_a w_a Re(f_a conj g_{2m−a}) (the terms of [`expansion`]) to the
-/// difference part (im) of `acc`, in one pass.
-fn add_power(acc: &mut [C64], f: &[Vec<C64>], g: &[Vec<C64>], m: usize, scale: f64) {
-    const CHUNK: usize = 4096;
-    let terms: Vec<(usize, f64)> = expansion(m).collect();
+/// The fields of one factor, weighted by (|s|/s_p)^e for e = −1 ..= 2·[`DIFF_POWERS`]
+/// (index e + 1).
+const POWERS: usize = 2 * DIFF_POWERS + 2;
+
+/// The accumulators of one padded cell: the separable part (index 0), then group l of the
+/// sum basis pair l (re) and the difference power m = l (im).
+type Cell = [C64; NB + 1];
+
+/// Σ_a w_a Re(f_a conj g_{2m−a}) over the terms of [`expansion`] (f, g the fields of
+/// exponents 0, 1, …).
+#[inline]
+fn power_term(f: &[C64], g: &[C64], terms: &[(usize, f64)], m: usize) -> f64 {
+    let mut d = 0.0;
+    for &(a, w) in terms {
+        d += w * (f[a] * g[2 * m - a].conj()).re;
+    }
+    d
+}
+
+/// `add(cell, f, g)` at every padded cell, with the factors' power fields at that cell
+/// (one pass over the fields).
+fn each_cell(
+    acc: &mut [Cell],
+    f: &[Vec<C64>],
+    g: &[Vec<C64>],
+    add: impl Fn(&mut Cell, &[C64; POWERS], &[C64; POWERS]) + Sync,
+) {
+    const CHUNK: usize = 2048;
     acc.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
         let at = c * CHUNK;
-        for (x, o) in out.iter_mut().enumerate() {
-            let mut d = 0.0;
-            for &(a, w) in &terms {
-                d += w * (f[a][at + x] * g[2 * m - a][at + x].conj()).re;
-            }
-            o.im += scale * d;
+        for (x, cell) in out.iter_mut().enumerate() {
+            let fv: [C64; POWERS] = std::array::from_fn(|e| f[e][at + x]);
+            let gv: [C64; POWERS] = std::array::from_fn(|e| g[e][at + x]);
+            add(cell, &fv, &gv);
         }
     });
+}
+
+/// Accumulator `j` of every cell (for its transform).
+fn column(acc: &[Cell], j: usize, pool: &Pool) -> Vec<C64> {
+    let mut out = pool.take(acc.len());
+    out.par_iter_mut()
+        .zip(acc.par_iter())
+        .for_each(|(o, c)| *o = c[j]);
+    out
 }
 
 /// The bound waves of a set of components through the fitted kernels, by transforms.
@@ -142,8 +290,17 @@ pub struct TransformBound {
     depth: Option<f64>,
     nx: usize,
     ny: usize,
+    /// The reach of the waves on each axis (the padded grid and the outputs kept).
+    reach: (Reach, Reach),
     plan: Plan,
     fit: KernelFit,
+}
+
+/// The reach of `comps` on a grid of nx × ny.
+fn reach_of(comps: &[Component], nx: usize, ny: usize) -> (Reach, Reach) {
+    let kx = comps.iter().map(|c| c.n.abs()).max().unwrap_or(0);
+    let ky = comps.iter().map(|c| c.m.abs()).max().unwrap_or(0);
+    (Reach::of(kx, nx), Reach::of(ky, ny))
 }
 
 impl TransformBound {
@@ -154,24 +311,63 @@ impl TransformBound {
         depth: Option<f64>,
         fit: KernelFit,
     ) -> Self {
+        let reach = reach_of(&comps, nx, ny);
         Self {
             comps,
             depth,
             nx,
             ny,
-            plan: Plan::new(padded(nx), padded(ny)),
+            reach,
+            plan: Plan::new(reach.0.len, reach.1.len),
             fit,
         }
     }
 
-    /// Every component of `setup` (its draws; the time is not used), the kernels fitted to
-    /// its spectrum, and what the sidecar records (the dropped pairs counted).
-    pub fn for_setup(setup: &SpectrumSetup) -> (Self, SecondOrderInfo) {
-        let all = SecondOrder::new(setup, 1.0);
+    /// The region of the fit for `comps` of `setup`: their box, the box of the outputs
+    /// kept and, below the whole variance, the least E|h̃0|² among them.
+    pub fn region(setup: &SpectrumSetup, comps: &[Component], fraction: f64) -> Region {
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+        let (rx, ry) = reach_of(comps, nx, ny);
         let (dkx, dky) = setup.dk();
-        let bounds = Box2::of(setup);
-        let fit = KernelFit::new(setup.spectrum, setup.dispersion, bounds, (dkx, dky));
+        let grid = Box2::of(setup);
+        let boxed = |ix: i64, iy: i64| Box2 {
+            kx_max: rx.edge(ix, dkx, grid.kx_max, nx),
+            ky_max: ry.edge(iy, dky, grid.ky_max, ny),
+        };
+        let floor = if fraction < 1.0 {
+            comps.iter().map(|c| c.p).fold(f64::INFINITY, f64::min)
+        } else {
+            0.0
+        };
+        Region {
+            waves: boxed(rx.k, ry.k),
+            outputs: boxed(rx.o, ry.o),
+            floor: if floor.is_finite() { floor } else { 0.0 },
+        }
+    }
+
+    /// The components of `setup` (its draws; the time is not used) that carry `fraction`
+    /// of the variance (the pair sum's), the kernels fitted to their part of the
+    /// spectrum, and what the sidecar records (the dropped pairs counted).
+    pub fn for_setup(setup: &SpectrumSetup, fraction: f64) -> (Self, SecondOrderInfo) {
+        let all = SecondOrder::new(setup, fraction);
+        let fit = Self::fit_for(setup, &all);
+        Self::with_fit(setup, all, fit)
+    }
+
+    /// The kernels fitted to the part of `setup`'s spectrum that `so` pairs.
+    pub fn fit_for(setup: &SpectrumSetup, so: &SecondOrder) -> KernelFit {
+        let region = Self::region(setup, &so.comps, so.info.fraction);
+        KernelFit::new(setup.spectrum, setup.dispersion, region, setup.dk())
+    }
+
+    /// The components of `all` through the kernels `fit`, and what the sidecar records.
+    pub fn with_fit(
+        setup: &SpectrumSetup,
+        all: SecondOrder,
+        fit: KernelFit,
+    ) -> (Self, SecondOrderInfo) {
+        let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let mut info = all.info.clone();
         let depth = all.depth;
         let me = Self::new(all.comps, nx, ny, depth, fit);
@@ -184,25 +380,25 @@ impl TransformBound {
     }
 
     /// The field Σ_i f(k_i)·w(k_i)·b_i e^{ik_i·x} on the padded grid (py rows of px).
-    fn field(&self, b: &[C64], f: Factor, exponent: Option<i32>) -> Vec<C64> {
+    fn field(&self, b: &[C64], f: Factor, exponent: Option<i32>, pool: &Pool) -> Vec<C64> {
         let (px, py) = (self.plan.px, self.plan.py);
-        let mut data = vec![C64::new(0.0, 0.0); px * py];
+        let mut data = pool.take(px * py);
         for (c, &bi) in self.comps.iter().zip(b) {
             let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
             let row = c.n.rem_euclid(px as i64) as usize;
             let col = c.m.rem_euclid(py as i64) as usize;
             data[row * py + col] += bi * (f.of(c) * w);
         }
-        self.plan.inverse(&mut data);
+        self.plan.inverse(&mut data, pool);
         data
     }
 
     /// The fields of f·(|s|/s_p)^e for every exponent a term needs, e = −1 ..= 2·[`DIFF_POWERS`]
     /// (index e + 1): the sum basis' [`EXPONENTS`], the difference powers, and e = 0 for
     /// the separable part, each transformed once.
-    fn powers(&self, b: &[C64], f: Factor) -> Vec<Vec<C64>> {
+    fn powers(&self, b: &[C64], f: Factor, pool: &Pool) -> Vec<Vec<C64>> {
         (-1..=2 * DIFF_POWERS as i32)
-            .map(|e| self.field(b, f, Some(e)))
+            .map(|e| self.field(b, f, Some(e), pool))
             .collect()
     }
 
@@ -210,16 +406,20 @@ impl TransformBound {
     /// off the grid: the pair counts at every output, from the transform of the squared
     /// occupancy field (the outputs the transforms leave out).
     pub fn dropped_pairs(&self) -> (u64, u64) {
+        if self.reach.0.all_on_grid() && self.reach.1.all_on_grid() {
+            return (0, 0);
+        }
         let (nx, ny) = (self.nx as i64, self.ny as i64);
         let (px, py) = (self.plan.px, self.plan.py);
         let ones = vec![C64::new(1.0, 0.0); self.comps.len()];
-        let a = self.field(&ones, Factor::W0, None);
+        let pool = Pool::default();
+        let a = self.field(&ones, Factor::W0, None, &pool);
         let mut acc: Vec<C64> = a
             .iter()
             .map(|x| C64::new((x * x).re, x.norm_sqr()))
             .collect();
         drop(a);
-        self.plan.forward(&mut acc);
+        self.plan.forward(&mut acc, &pool);
         let (mut sums, mut diffs) = (0.0f64, 0.0f64);
         for row in 0..px {
             let n = signed_index(row, px);
@@ -261,76 +461,77 @@ impl TransformBound {
             })
             .collect();
         let finite = self.depth.is_some();
-        // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
-        let accumulate = |acc: &mut [C64], f: &[C64], g: &[C64], sum_w: f64, diff_w: f64| {
-            acc.par_iter_mut()
-                .zip(f.par_iter().zip(g.par_iter()))
-                .for_each(|(a, (x, y))| {
-                    let s = if sum_w != 0.0 {
-                        sum_w * (x * y).re
-                    } else {
-                        0.0
-                    };
-                    let d = if diff_w != 0.0 {
-                        diff_w * (x * y.conj()).re
-                    } else {
-                        0.0
-                    };
-                    *a += C64::new(s, d);
-                });
-        };
+        let pool = Pool::default();
+        // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
+        let ox = self.reach.0.o;
+        let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
         let transform = |mut acc: Vec<C64>| {
-            self.plan.forward(&mut acc);
+            self.plan.forward_rows(&mut acc, &kept_row, &pool);
             acc
         };
-        // The fields of exponent e are `powers[e + 1]`.
+        // The fields of exponent e are at index e + 1.
         let at = |e: i32| (e + 1) as usize;
-        // The separable part B + R_i + R_j (its B terms with the factors' fields below).
-        let mut sep = vec![C64::new(0.0, 0.0); px * py];
+        let terms: Vec<Vec<(usize, f64)>> =
+            (0..=DIFF_POWERS).map(|m| expansion(m).collect()).collect();
+        let zero: Cell = [C64::new(0.0, 0.0); NB + 1];
+        // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g). The
+        // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
+        // fields below).
+        let mut acc = vec![zero; px * py];
         {
-            let one = self.field(&b, Factor::W0, None);
-            let r = self.field(&b, Factor::R, None);
-            accumulate(&mut sep, &r, &one, 2.0, 2.0);
+            let one = self.field(&b, Factor::W0, None, &pool);
+            let r = self.field(&b, Factor::R, None, &pool);
+            acc.par_iter_mut()
+                .zip(one.par_iter().zip(r.par_iter()))
+                .for_each(|(c, (o, r))| {
+                    c[0] += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
+                });
+            pool.give_all([one, r]);
         }
-        // Group l holds the sum term's basis pair l (re) and the difference term's power
-        // m = l (im): the B terms (multiplied by 2T c) and the S·A terms (by c).
-        let pairs = BASIS_PAIRS;
-        let zeros = || vec![vec![C64::new(0.0, 0.0); px * py]; pairs.len()];
-        let mut b_acc = zeros();
+        // Group l: the sum term's basis pair l (re) and the difference term's power m = l
+        // (im), of the B terms (multiplied by 2T c) and, at finite depth, of the S·A terms
+        // (by c, in `sa`).
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            let powers = self.powers(&b, f);
-            accumulate(&mut sep, &powers[at(0)], &powers[at(0)], sign, 1.0);
-            for (acc, &(u, v)) in b_acc.iter_mut().zip(&pairs) {
-                let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
-                accumulate(acc, &powers[u], &powers[v], sign, 0.0);
-            }
-            for (m, acc) in b_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                add_power(acc, &powers[at(0)..], &powers[at(0)..], m, 1.0);
-            }
-        }
-        let mut groups: Vec<(Vec<C64>, bool)> = vec![(transform(sep), false)];
-        let mut sa_acc = Vec::new();
-        if finite {
-            sa_acc = zeros();
-            for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
-                let (pf, pg) = (self.powers(&b, f), self.powers(&b, g));
-                for (acc, &(u, v)) in sa_acc.iter_mut().zip(&pairs) {
-                    let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
-                    accumulate(acc, &pf[u], &pg[v], 1.0, 0.0);
-                    accumulate(acc, &pf[v], &pg[u], 1.0, 0.0);
+            let powers = self.powers(&b, f, &pool);
+            each_cell(&mut acc, &powers, &powers, |c, p, _| {
+                let p0 = p[at(0)];
+                c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
+                    c[1 + l].re += sign * (p[at(EXPONENTS[u])] * p[at(EXPONENTS[v])]).re;
                 }
+                for (m, t) in terms.iter().enumerate() {
+                    c[1 + m].im += power_term(&p[at(0)..], &p[at(0)..], t, m);
+                }
+            });
+            pool.give_all(powers);
+        }
+        let groups: Vec<(Vec<C64>, bool)> = (0..=NB)
+            .map(|j| (transform(column(&acc, j, &pool)), j > 0))
+            .collect();
+        drop(acc);
+        let mut sa: Vec<Vec<C64>> = Vec::new();
+        if finite {
+            let mut sa_acc = vec![zero; px * py];
+            for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
+                let (pf, pg) = (self.powers(&b, f, &pool), self.powers(&b, g, &pool));
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
-                for (m, acc) in sa_acc.iter_mut().enumerate().take(DIFF_POWERS + 1) {
-                    add_power(acc, &pf[at(0)..], &pg[at(0)..], m, 2.0 * sign);
-                }
+                each_cell(&mut sa_acc, &pf, &pg, |c, pf, pg| {
+                    for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
+                        let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
+                        c[1 + l].re += (pf[u] * pg[v]).re + (pf[v] * pg[u]).re;
+                    }
+                    for (m, t) in terms.iter().enumerate() {
+                        c[1 + m].im += 2.0 * sign * power_term(&pf[at(0)..], &pg[at(0)..], t, m);
+                    }
+                });
+                pool.give_all(pf.into_iter().chain(pg));
             }
+            sa = (1..=NB)
+                .map(|j| transform(column(&sa_acc, j, &pool)))
+                .collect();
         }
-        for acc in b_acc {
-            groups.push((transform(acc), true));
-        }
-        let sa: Vec<Vec<C64>> = sa_acc.into_iter().map(transform).collect();
         let depth = self.depth;
         let setdown: f64 = self
             .comps
@@ -339,19 +540,17 @@ impl TransformBound {
             .sum();
         let norm = 0.25 / (px * py) as f64;
         let fit = &self.fit;
+        // The outputs the waves reach: lines n ≤ o_x, columns |m| ≤ o_y (on the grid).
+        let (ox, oy) = (self.reach.0.o, self.reach.1.o);
         half.data
             .par_chunks_mut(ny)
             .enumerate()
+            .take((ox + 1).max(0) as usize)
             .for_each(|(n, line)| {
                 let n = n as i64;
-                if !on_grid(n, nx) {
-                    return;
-                }
-                for (idx, v) in line.iter_mut().enumerate() {
-                    let m = signed_index(idx, ny);
-                    if !on_grid(m, ny) {
-                        continue;
-                    }
+                debug_assert!(on_grid(n, nx));
+                for m in -oy..=oy {
+                    let v = &mut line[m.rem_euclid(ny as i64) as usize];
                     let here =
                         n.rem_euclid(px as i64) as usize * py + m.rem_euclid(py as i64) as usize;
                     let there = (-n).rem_euclid(px as i64) as usize * py
