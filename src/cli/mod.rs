@@ -385,9 +385,10 @@ pub struct BenchArgs {
     #[arg(long)]
     pub sequence: bool,
     /// Also time second-order seas beside the linear one at each size (Pierson–Moskowitz
-    /// 15 m/s over 2048 m): the exact pair sum at q = 0.99 and the fitted method over
-    /// every component (up to 2048²), as ratios to the linear field; and 48 frames of a
-    /// looping sea (T = 20 s), linear and second order, with their ratio
+    /// 15 m/s over 2048 m): the exact pair sum and the fitted method at q = 0.99, as
+    /// ratios to the linear field; and 48 frames of the sea, unlooped (the default method)
+    /// and looping (T = 20 s, the pair sum binned), linear and second order, with their
+    /// ratios
     #[arg(long)]
     pub second_order: bool,
     /// Worker threads [default: all cores]
