@@ -82,37 +82,45 @@ impl Reach {
     }
 }
 
-/// Padded arrays given back for reuse within one evaluation (fresh large allocations
-/// each cost their page faults).
-#[derive(Default)]
-struct Pool(std::sync::Mutex<Vec<Vec<C64>>>);
+/// Padded arrays given back for reuse (fresh large allocations each cost their page
+/// faults).
+struct Pool<T = C64>(std::sync::Mutex<Vec<Vec<T>>>);
 
-impl Pool {
-    /// A zeroed array of `len`.
-    fn take(&self, len: usize) -> Vec<C64> {
+impl<T> Default for Pool<T> {
+    fn default() -> Self {
+        Self(std::sync::Mutex::new(Vec::new()))
+    }
+}
+
+impl<T: Copy + Default + Send> Pool<T> {
+    /// An array of `len` zeros (`T::default()`).
+    fn take(&self, len: usize) -> Vec<T> {
+        let mut v = self.take_any(len);
+        v.fill(T::default());
+        v
+    }
+
+    /// An array of `len` whose values the caller overwrites (a reused one keeps its old
+    /// values).
+    fn take_any(&self, len: usize) -> Vec<T> {
         let reused = self
             .0
             .lock()
             .expect("no panics while holding the lock")
             .pop();
-        match reused {
-            Some(mut v) => {
-                v.clear();
-                v.resize(len, C64::new(0.0, 0.0));
-                v
-            }
-            None => vec![C64::new(0.0, 0.0); len],
-        }
+        let mut v = reused.unwrap_or_default();
+        v.resize(len, T::default());
+        v
     }
 
-    fn give(&self, v: Vec<C64>) {
+    fn give(&self, v: Vec<T>) {
         self.0
             .lock()
             .expect("no panics while holding the lock")
             .push(v);
     }
 
-    fn give_all(&self, vs: impl IntoIterator<Item = Vec<C64>>) {
+    fn give_all(&self, vs: impl IntoIterator<Item = Vec<T>>) {
         for v in vs {
             self.give(v);
         }
@@ -159,12 +167,22 @@ impl Plan {
             }
         });
         let src = &*data;
-        let mut t = pool.take(a * b);
-        t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
-            for (i, v) in row.iter_mut().enumerate() {
-                *v = src[i * b + j];
-            }
-        });
+        let mut t = pool.take_any(a * b);
+        // Blocked: each task writes TILE rows of t, reading TILE consecutive values of
+        // every row of `data`.
+        const TILE: usize = 8;
+        t.par_chunks_mut(a * TILE)
+            .enumerate()
+            .for_each(|(c, rows)| {
+                let j0 = c * TILE;
+                let tile = rows.len() / a;
+                for i in 0..a {
+                    let from = &src[i * b + j0..i * b + j0 + tile];
+                    for (jj, &v) in from.iter().enumerate() {
+                        rows[jj * a + i] = v;
+                    }
+                }
+            });
         t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
             if wanted(j) {
                 fa.process(row);
@@ -277,7 +295,7 @@ fn each_cell(
 
 /// Accumulator `j` of every cell (for its transform).
 fn column(acc: &[Cell], j: usize, pool: &Pool) -> Vec<C64> {
-    let mut out = pool.take(acc.len());
+    let mut out = pool.take_any(acc.len());
     out.par_iter_mut()
         .zip(acc.par_iter())
         .for_each(|(o, c)| *o = c[j]);
@@ -293,6 +311,10 @@ pub struct TransformBound {
     /// The reach of the waves on each axis (the padded grid and the outputs kept).
     reach: (Reach, Reach),
     plan: Plan,
+    /// The padded arrays of the last frame, reused by the next (their page faults paid
+    /// once).
+    pool: Pool,
+    cells: Pool<Cell>,
     fit: KernelFit,
 }
 
@@ -319,6 +341,8 @@ impl TransformBound {
             ny,
             reach,
             plan: Plan::new(reach.0.len, reach.1.len),
+            pool: Pool::default(),
+            cells: Pool::default(),
             fit,
         }
     }
@@ -461,26 +485,25 @@ impl TransformBound {
             })
             .collect();
         let finite = self.depth.is_some();
-        let pool = Pool::default();
+        let pool = &self.pool;
         // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
         let ox = self.reach.0.o;
         let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
         let transform = |mut acc: Vec<C64>| {
-            self.plan.forward_rows(&mut acc, &kept_row, &pool);
+            self.plan.forward_rows(&mut acc, &kept_row, pool);
             acc
         };
         // The fields of exponent e are at index e + 1.
         let at = |e: i32| (e + 1) as usize;
         let terms: Vec<Vec<(usize, f64)>> =
             (0..=DIFF_POWERS).map(|m| expansion(m).collect()).collect();
-        let zero: Cell = [C64::new(0.0, 0.0); NB + 1];
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g). The
         // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
         // fields below).
-        let mut acc = vec![zero; px * py];
+        let mut acc = self.cells.take(px * py);
         {
-            let one = self.field(&b, Factor::W0, None, &pool);
-            let r = self.field(&b, Factor::R, None, &pool);
+            let one = self.field(&b, Factor::W0, None, pool);
+            let r = self.field(&b, Factor::R, None, pool);
             acc.par_iter_mut()
                 .zip(one.par_iter().zip(r.par_iter()))
                 .for_each(|(c, (o, r))| {
@@ -493,7 +516,7 @@ impl TransformBound {
         // (by c, in `sa`).
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            let powers = self.powers(&b, f, &pool);
+            let powers = self.powers(&b, f, pool);
             each_cell(&mut acc, &powers, &powers, |c, p, _| {
                 let p0 = p[at(0)];
                 c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
@@ -507,14 +530,14 @@ impl TransformBound {
             pool.give_all(powers);
         }
         let groups: Vec<(Vec<C64>, bool)> = (0..=NB)
-            .map(|j| (transform(column(&acc, j, &pool)), j > 0))
+            .map(|j| (transform(column(&acc, j, pool)), j > 0))
             .collect();
-        drop(acc);
+        self.cells.give(acc);
         let mut sa: Vec<Vec<C64>> = Vec::new();
         if finite {
-            let mut sa_acc = vec![zero; px * py];
+            let mut sa_acc = self.cells.take(px * py);
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
-                let (pf, pg) = (self.powers(&b, f, &pool), self.powers(&b, g, &pool));
+                let (pf, pg) = (self.powers(&b, f, pool), self.powers(&b, g, pool));
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
                 each_cell(&mut sa_acc, &pf, &pg, |c, pf, pg| {
@@ -529,7 +552,7 @@ impl TransformBound {
                 pool.give_all(pf.into_iter().chain(pg));
             }
             sa = (1..=NB)
-                .map(|j| transform(column(&sa_acc, j, &pool)))
+                .map(|j| transform(column(&sa_acc, j, pool)))
                 .collect();
         }
         let depth = self.depth;
@@ -596,6 +619,7 @@ impl TransformBound {
                     *v += Complex::new(h.re as f32, h.im as f32);
                 }
             });
+        pool.give_all(groups.into_iter().map(|(g, _)| g).chain(sa));
     }
 }
 
