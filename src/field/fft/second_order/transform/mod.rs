@@ -125,6 +125,14 @@ impl<T: Copy + Default + Send> Pool<T> {
             self.give(v);
         }
     }
+
+    /// Frees the arrays given back.
+    fn clear(&self) {
+        self.0
+            .lock()
+            .expect("no panics while holding the lock")
+            .clear();
+    }
 }
 
 /// 2D transforms of a px × py grid (rows of py).
@@ -274,23 +282,23 @@ fn power_term(f: &[C64], g: &[C64], terms: &[(usize, f64)], m: usize) -> f64 {
     d
 }
 
-/// `add(cell, f, g)` at every padded cell, with the factors' power fields at that cell
-/// (one pass over the fields).
-fn each_cell(
-    acc: &mut [Cell],
-    f: &[Vec<C64>],
-    g: &[Vec<C64>],
-    add: impl Fn(&mut Cell, &[C64; POWERS], &[C64; POWERS]) + Sync,
-) {
-    const CHUNK: usize = 2048;
-    acc.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-        let at = c * CHUNK;
-        for (x, cell) in out.iter_mut().enumerate() {
-            let fv: [C64; POWERS] = std::array::from_fn(|e| f[e][at + x]);
-            let gv: [C64; POWERS] = std::array::from_fn(|e| g[e][at + x]);
-            add(cell, &fv, &gv);
+/// The fields a product reads: a factor weighted by every power (|s|/s_p)^e,
+/// e = −1 ..= 2·[`DIFF_POWERS`] (index e + 1), or by none (index 0 alone).
+#[derive(Clone, Copy, PartialEq)]
+enum Fields {
+    Powers(Factor),
+    Plain(Factor),
+}
+
+impl Fields {
+    fn each(self) -> Vec<(Factor, Option<i32>)> {
+        match self {
+            Fields::Powers(f) => (-1..=2 * DIFF_POWERS as i32)
+                .map(|e| (f, Some(e)))
+                .collect(),
+            Fields::Plain(f) => vec![(f, None)],
         }
-    });
+    }
 }
 
 /// Accumulator `j` of every cell (for its transform).
@@ -311,9 +319,10 @@ pub struct TransformBound {
     /// The reach of the waves on each axis (the padded grid and the outputs kept).
     reach: (Reach, Reach),
     plan: Plan,
-    /// The padded arrays of the last frame, reused by the next (their page faults paid
-    /// once).
+    /// The padded arrays given back within a frame, reused by its later steps.
     pool: Pool,
+    /// The transforms' first stages (kx rows of the components).
+    ones: Pool,
     cells: Pool<Cell>,
     fit: KernelFit,
 }
@@ -342,6 +351,7 @@ impl TransformBound {
             reach,
             plan: Plan::new(reach.0.len, reach.1.len),
             pool: Pool::default(),
+            ones: Pool::default(),
             cells: Pool::default(),
             fit,
         }
@@ -417,13 +427,100 @@ impl TransformBound {
         data
     }
 
-    /// The fields of f·(|s|/s_p)^e for every exponent a term needs, e = −1 ..= 2·[`DIFF_POWERS`]
-    /// (index e + 1): the sum basis' [`EXPONENTS`], the difference powers, and e = 0 for
-    /// the separable part, each transformed once.
-    fn powers(&self, b: &[C64], f: Factor, pool: &Pool) -> Vec<Vec<C64>> {
-        (-1..=2 * DIFF_POWERS as i32)
-            .map(|e| self.field(b, f, Some(e), pool))
-            .collect()
+    /// The first stage of a field's inverse transform: Σ over the components of
+    /// f(k_i)·w(k_i)·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each row
+    /// transformed along ky (rows of zeros stay zero).
+    fn stage_one(&self, b: &[C64], f: Factor, exponent: Option<i32>) -> Vec<C64> {
+        let py = self.plan.py;
+        let kx = self.reach.0.k;
+        let mut data = self.ones.take((2 * kx + 1) as usize * py);
+        for (c, &bi) in self.comps.iter().zip(b) {
+            let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
+            let row = (c.n + kx) as usize;
+            let col = c.m.rem_euclid(py as i64) as usize;
+            data[row * py + col] += bi * (f.of(c) * w);
+        }
+        let zero = C64::new(0.0, 0.0);
+        data.par_chunks_mut(py).for_each(|row| {
+            if row.iter().any(|v| *v != zero) {
+                self.plan.inv_y.process(row);
+            }
+        });
+        data
+    }
+
+    /// `add(cell, f, g)` at every padded cell (py rows of px), with the values there of
+    /// the fields of `fs` and `gs` (the fields of the terms' factors, each transformed
+    /// once): the transforms' first stage whole ([`Self::stage_one`]), the second (along
+    /// kx) a few rows of y at a time, just before their products, so that no whole field
+    /// is held. The same values as the whole fields' transforms.
+    fn each_cell(
+        &self,
+        b: &[C64],
+        fs: Fields,
+        gs: Fields,
+        acc: &mut [Cell],
+        add: impl Fn(&mut Cell, &[C64; POWERS], &[C64; POWERS]) + Sync,
+    ) {
+        const ROWS: usize = 8;
+        let (px, py) = (self.plan.px, self.plan.py);
+        let kx = self.reach.0.k;
+        let (f_list, g_list) = (fs.each(), gs.each());
+        let f_one: Vec<Vec<C64>> = f_list
+            .iter()
+            .map(|&(f, e)| self.stage_one(b, f, e))
+            .collect();
+        let g_one: Vec<Vec<C64>> = if gs == fs {
+            Vec::new()
+        } else {
+            g_list
+                .iter()
+                .map(|&(f, e)| self.stage_one(b, f, e))
+                .collect()
+        };
+        let g_src = if gs == fs { &f_one } else { &g_one };
+        let zero = C64::new(0.0, 0.0);
+        let inv_x = &*self.plan.inv_x;
+        acc.par_chunks_mut(px * ROWS)
+            .enumerate()
+            .for_each(|(c, out)| {
+                let j0 = c * ROWS;
+                let nj = out.len() / px;
+                // The rows j0 .. j0 + nj of each field: gathered from its first stage, then
+                // transformed along kx.
+                let rows_of = |ones: &[Vec<C64>]| -> Vec<C64> {
+                    let mut rows = vec![zero; ones.len() * nj * px];
+                    let mut scratch = vec![zero; inv_x.get_inplace_scratch_len()];
+                    for (l, one) in ones.iter().enumerate() {
+                        let block = &mut rows[l * nj * px..(l + 1) * nj * px];
+                        for r in 0..=(2 * kx) as usize {
+                            let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                            for jj in 0..nj {
+                                block[jj * px + col] = one[r * py + j0 + jj];
+                            }
+                        }
+                        for row in block.chunks_exact_mut(px) {
+                            inv_x.process_with_scratch(row, &mut scratch);
+                        }
+                    }
+                    rows
+                };
+                let fr = rows_of(&f_one);
+                let gr = if gs == fs { Vec::new() } else { rows_of(g_src) };
+                let gr = if gs == fs { &fr } else { &gr };
+                let (nf, ng) = (f_one.len(), g_src.len());
+                for jj in 0..nj {
+                    for x in 0..px {
+                        let at = |rows: &[C64], l: usize| rows[(l * nj + jj) * px + x];
+                        let fv: [C64; POWERS] =
+                            std::array::from_fn(|l| if l < nf { at(&fr, l) } else { zero });
+                        let gv: [C64; POWERS] =
+                            std::array::from_fn(|l| if l < ng { at(gr, l) } else { zero });
+                        add(&mut out[jj * px + x], &fv, &gv);
+                    }
+                }
+            });
+        self.ones.give_all(f_one.into_iter().chain(g_one));
     }
 
     /// The unordered pairs (self-pairs included) whose sum, and whose difference, falls
@@ -501,34 +598,40 @@ impl TransformBound {
         // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
         // fields below).
         let mut acc = self.cells.take(px * py);
-        {
-            let one = self.field(&b, Factor::W0, None, pool);
-            let r = self.field(&b, Factor::R, None, pool);
-            acc.par_iter_mut()
-                .zip(one.par_iter().zip(r.par_iter()))
-                .for_each(|(c, (o, r))| {
-                    c[0] += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
-                });
-            pool.give_all([one, r]);
-        }
+        self.each_cell(
+            &b,
+            Fields::Plain(Factor::W0),
+            Fields::Plain(Factor::R),
+            &mut acc,
+            |c, o, r| {
+                let (o, r) = (o[0], r[0]);
+                c[0] += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
+            },
+        );
         // Group l: the sum term's basis pair l (re) and the difference term's power m = l
         // (im), of the B terms (multiplied by 2T c) and, at finite depth, of the S·A terms
         // (by c, in `sa`).
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            let powers = self.powers(&b, f, pool);
-            each_cell(&mut acc, &powers, &powers, |c, p, _| {
-                let p0 = p[at(0)];
-                c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
-                for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
-                    c[1 + l].re += sign * (p[at(EXPONENTS[u])] * p[at(EXPONENTS[v])]).re;
-                }
-                for (m, t) in terms.iter().enumerate() {
-                    c[1 + m].im += power_term(&p[at(0)..], &p[at(0)..], t, m);
-                }
-            });
-            pool.give_all(powers);
+            self.each_cell(
+                &b,
+                Fields::Powers(f),
+                Fields::Powers(f),
+                &mut acc,
+                |c, p, _| {
+                    let p0 = p[at(0)];
+                    c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                    for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
+                        c[1 + l].re += sign * (p[at(EXPONENTS[u])] * p[at(EXPONENTS[v])]).re;
+                    }
+                    for (m, t) in terms.iter().enumerate() {
+                        c[1 + m].im += power_term(&p[at(0)..], &p[at(0)..], t, m);
+                    }
+                },
+            );
         }
+        // (The first stages are done with until the finite-depth terms.)
+        self.ones.clear();
         let groups: Vec<(Vec<C64>, bool)> = (0..=NB)
             .map(|j| (transform(column(&acc, j, pool)), j > 0))
             .collect();
@@ -537,10 +640,10 @@ impl TransformBound {
         if finite {
             let mut sa_acc = self.cells.take(px * py);
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
-                let (pf, pg) = (self.powers(&b, f, pool), self.powers(&b, g, pool));
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
-                each_cell(&mut sa_acc, &pf, &pg, |c, pf, pg| {
+                let (fs, gs) = (Fields::Powers(f), Fields::Powers(g));
+                self.each_cell(&b, fs, gs, &mut sa_acc, |c, pf, pg| {
                     for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
                         let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
                         c[1 + l].re += (pf[u] * pg[v]).re + (pf[v] * pg[u]).re;
@@ -549,7 +652,6 @@ impl TransformBound {
                         c[1 + m].im += 2.0 * sign * power_term(&pf[at(0)..], &pg[at(0)..], t, m);
                     }
                 });
-                pool.give_all(pf.into_iter().chain(pg));
             }
             sa = (1..=NB)
                 .map(|j| transform(column(&sa_acc, j, pool)))
@@ -619,7 +721,11 @@ impl TransformBound {
                     *v += Complex::new(h.re as f32, h.im as f32);
                 }
             });
-        pool.give_all(groups.into_iter().map(|(g, _)| g).chain(sa));
+        // Nothing held between frames (the linear field's own arrays come next).
+        for p in [&self.pool, &self.ones] {
+            p.clear();
+        }
+        self.cells.clear();
     }
 }
 
