@@ -215,6 +215,57 @@ fn second_order_loops_and_refuses_choppiness_from_the_command_line() {
 }
 
 #[test]
+fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_count() {
+    // Without a loop the default (`auto`) takes the fitted method on this deep sea, its
+    // components and fit prepared once for the sequence: every frame of `animate` is
+    // `generate --time k/fps` bit for bit, with 1 or 2 threads, and the frames move.
+    let dir = tempfile::tempdir().unwrap();
+    let sea = [
+        "--method",
+        "fft",
+        "--spectrum",
+        "pierson-moskowitz",
+        "--wind-speed",
+        "12",
+        "--spreading",
+        "hasselmann",
+        "--nonlinear",
+        "second-order",
+        "--size",
+        "64",
+        "--extent",
+        "640",
+        "--fps",
+        "0.4",
+        "-q",
+    ];
+    for threads in ["1", "2"] {
+        let mut a = vec!["animate", "--frames", "4", "--format", "tif"];
+        a.extend(sea);
+        a.extend(["--threads", threads, "-o", threads]);
+        common::run_ok(dir.path(), &a);
+    }
+    let frame = |t: &str, k: usize| common::read(&dir.path().join(format!("{t}/frame_{k:05}.tif")));
+    for k in 0..4 {
+        assert_eq!(frame("1", k), frame("2", k), "frame {k}: 1 and 2 threads");
+    }
+    assert_ne!(frame("1", 0), frame("1", 1));
+    for k in [1usize, 3] {
+        let t = format!("{}", k as f64 / 0.4);
+        let mut g = vec!["generate", "--time", &t, "-o", "g.tif", "--force"];
+        g.extend(sea);
+        common::run_ok(dir.path(), &g);
+        assert_eq!(
+            common::read(&dir.path().join("g.tif")),
+            frame("1", k),
+            "frame {k} and generate --time {t}"
+        );
+        let side = common::json_file(&dir.path().join("g.json"));
+        assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
+    }
+}
+
+#[test]
 fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count() {
     // A looping sea's pair sum is binned once by the pairs' multiples of 2π/T: every
     // frame of `animate` is `generate --time k/fps` bit for bit, with 1 or 2 threads, a

@@ -271,6 +271,14 @@ const POWERS: usize = 2 * DIFF_POWERS + 2;
 /// sum basis pair l (re) and the difference power m = l (im).
 type Cell = [C64; NB + 1];
 
+/// The accumulators of every padded cell (py rows of px), one array an accumulator, each
+/// then transformed in place.
+type Acc = [Vec<C64>; 7];
+const _: () = assert!(
+    NB + 1 == 7,
+    "one accumulator array for each of a cell's values"
+);
+
 /// Σ_a w_a Re(f_a conj g_{2m−a}) over the terms of [`expansion`] (f, g the fields of
 /// exponents 0, 1, …).
 #[inline]
@@ -301,15 +309,6 @@ impl Fields {
     }
 }
 
-/// Accumulator `j` of every cell (for its transform).
-fn column(acc: &[Cell], j: usize, pool: &Pool) -> Vec<C64> {
-    let mut out = pool.take_any(acc.len());
-    out.par_iter_mut()
-        .zip(acc.par_iter())
-        .for_each(|(o, c)| *o = c[j]);
-    out
-}
-
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
     comps: Vec<Component>,
@@ -323,7 +322,6 @@ pub struct TransformBound {
     pool: Pool,
     /// The transforms' first stages (kx rows of the components).
     ones: Pool,
-    cells: Pool<Cell>,
     fit: KernelFit,
 }
 
@@ -352,7 +350,6 @@ impl TransformBound {
             plan: Plan::new(reach.0.len, reach.1.len),
             pool: Pool::default(),
             ones: Pool::default(),
-            cells: Pool::default(),
             fit,
         }
     }
@@ -459,7 +456,7 @@ impl TransformBound {
         b: &[C64],
         fs: Fields,
         gs: Fields,
-        acc: &mut [Cell],
+        acc: &mut Acc,
         add: impl Fn(&mut Cell, &[C64; POWERS], &[C64; POWERS]) + Sync,
     ) {
         const ROWS: usize = 8;
@@ -481,11 +478,23 @@ impl TransformBound {
         let g_src = if gs == fs { &f_one } else { &g_one };
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
-        acc.par_chunks_mut(px * ROWS)
+        let chunk = px * ROWS;
+        let [a0, a1, a2, a3, a4, a5, a6] = acc;
+        (
+            a0.par_chunks_mut(chunk),
+            a1.par_chunks_mut(chunk),
+            a2.par_chunks_mut(chunk),
+            a3.par_chunks_mut(chunk),
+            a4.par_chunks_mut(chunk),
+            a5.par_chunks_mut(chunk),
+            a6.par_chunks_mut(chunk),
+        )
+            .into_par_iter()
             .enumerate()
-            .for_each(|(c, out)| {
+            .for_each(|(c, (o0, o1, o2, o3, o4, o5, o6))| {
+                let mut out = [o0, o1, o2, o3, o4, o5, o6];
                 let j0 = c * ROWS;
-                let nj = out.len() / px;
+                let nj = out[0].len() / px;
                 // The rows j0 .. j0 + nj of each field: gathered from its first stage, then
                 // transformed along kx.
                 let rows_of = |ones: &[Vec<C64>]| -> Vec<C64> {
@@ -516,7 +525,12 @@ impl TransformBound {
                             std::array::from_fn(|l| if l < nf { at(&fr, l) } else { zero });
                         let gv: [C64; POWERS] =
                             std::array::from_fn(|l| if l < ng { at(gr, l) } else { zero });
-                        add(&mut out[jj * px + x], &fv, &gv);
+                        let i = jj * px + x;
+                        let mut cell: Cell = std::array::from_fn(|g| out[g][i]);
+                        add(&mut cell, &fv, &gv);
+                        for (o, v) in out.iter_mut().zip(cell) {
+                            o[i] = v;
+                        }
                     }
                 }
             });
@@ -597,7 +611,7 @@ impl TransformBound {
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g). The
         // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
         // fields below).
-        let mut acc = self.cells.take(px * py);
+        let mut acc: Acc = std::array::from_fn(|_| pool.take(px * py));
         self.each_cell(
             &b,
             Fields::Plain(Factor::W0),
@@ -632,13 +646,14 @@ impl TransformBound {
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
-        let groups: Vec<(Vec<C64>, bool)> = (0..=NB)
-            .map(|j| (transform(column(&acc, j, pool)), j > 0))
+        let groups: Vec<(Vec<C64>, bool)> = acc
+            .into_iter()
+            .enumerate()
+            .map(|(j, a)| (transform(a), j > 0))
             .collect();
-        self.cells.give(acc);
         let mut sa: Vec<Vec<C64>> = Vec::new();
         if finite {
-            let mut sa_acc = self.cells.take(px * py);
+            let mut sa_acc: Acc = std::array::from_fn(|_| pool.take(px * py));
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
@@ -653,9 +668,7 @@ impl TransformBound {
                     }
                 });
             }
-            sa = (1..=NB)
-                .map(|j| transform(column(&sa_acc, j, pool)))
-                .collect();
+            sa = sa_acc.into_iter().skip(1).map(transform).collect();
         }
         let depth = self.depth;
         let setdown: f64 = self
@@ -725,7 +738,6 @@ impl TransformBound {
         for p in [&self.pool, &self.ones] {
             p.clear();
         }
-        self.cells.clear();
     }
 }
 
