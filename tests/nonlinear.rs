@@ -214,13 +214,9 @@ fn second_order_loops_and_refuses_choppiness_from_the_command_line() {
     assert!(common::names_in(dir.path()).is_empty(), "no file left");
 }
 
-#[test]
-fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_count() {
-    // Without a loop the default (`auto`) takes the fitted method on this deep sea, its
-    // components and fit prepared once for the sequence: every frame of `animate` is
-    // `generate --time k/fps` bit for bit, with 1 or 2 threads, and the frames move.
-    let dir = tempfile::tempdir().unwrap();
-    let sea = [
+/// A deep 64² second-order sea over 640 m, 0.4 frames a second (`extra` before `-q`).
+fn small_sea(extra: &[&'static str]) -> Vec<&'static str> {
+    let mut sea = vec![
         "--method",
         "fft",
         "--spectrum",
@@ -237,16 +233,25 @@ fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_cou
         "640",
         "--fps",
         "0.4",
-        "-q",
     ];
+    sea.extend(extra);
+    sea.push("-q");
+    sea
+}
+
+/// Runs `animate` of `frames` frames of `sea` in `dir` with 1 and 2 threads (into `1/` and
+/// `2/`), asserts the same bytes, moving frames, and frames 1 and 3 equal to `generate
+/// --time k/fps` (into g.tif); returns the frames' bytes.
+fn frames_are_generate(dir: &std::path::Path, sea: &[&str], frames: usize) -> Vec<Vec<u8>> {
+    let count = frames.to_string();
     for threads in ["1", "2"] {
-        let mut a = vec!["animate", "--frames", "4", "--format", "tif"];
+        let mut a = vec!["animate", "--frames", &count, "--format", "tif"];
         a.extend(sea);
         a.extend(["--threads", threads, "-o", threads]);
-        common::run_ok(dir.path(), &a);
+        common::run_ok(dir, &a);
     }
-    let frame = |t: &str, k: usize| common::read(&dir.path().join(format!("{t}/frame_{k:05}.tif")));
-    for k in 0..4 {
+    let frame = |t: &str, k: usize| common::read(&dir.join(format!("{t}/frame_{k:05}.tif")));
+    for k in 0..frames {
         assert_eq!(frame("1", k), frame("2", k), "frame {k}: 1 and 2 threads");
     }
     assert_ne!(frame("1", 0), frame("1", 1));
@@ -254,15 +259,25 @@ fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_cou
         let t = format!("{}", k as f64 / 0.4);
         let mut g = vec!["generate", "--time", &t, "-o", "g.tif", "--force"];
         g.extend(sea);
-        common::run_ok(dir.path(), &g);
+        common::run_ok(dir, &g);
         assert_eq!(
-            common::read(&dir.path().join("g.tif")),
+            common::read(&dir.join("g.tif")),
             frame("1", k),
             "frame {k} and generate --time {t}"
         );
-        let side = common::json_file(&dir.path().join("g.json"));
-        assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
     }
+    (0..frames).map(|k| frame("1", k)).collect()
+}
+
+#[test]
+fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_count() {
+    // Without a loop the default (`auto`) takes the fitted method on this deep sea, its
+    // components and fit prepared once for the sequence: every frame of `animate` is
+    // `generate --time k/fps` bit for bit, with 1 or 2 threads, and the frames move.
+    let dir = tempfile::tempdir().unwrap();
+    frames_are_generate(dir.path(), &small_sea(&[]), 4);
+    let side = common::json_file(&dir.path().join("g.json"));
+    assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
 }
 
 #[test]
@@ -271,51 +286,10 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
     // frame of `animate` is `generate --time k/fps` bit for bit, with 1 or 2 threads, a
     // frame one period on repeats the first, and the sidecar records the bins.
     let dir = tempfile::tempdir().unwrap();
-    let sea = [
-        "--method",
-        "fft",
-        "--spectrum",
-        "pierson-moskowitz",
-        "--wind-speed",
-        "12",
-        "--spreading",
-        "hasselmann",
-        "--nonlinear",
-        "second-order",
-        "--size",
-        "64",
-        "--extent",
-        "640",
-        "--loop-period",
-        "10",
-        "--fps",
-        "0.4",
-        "-q",
-    ];
-    for threads in ["1", "2"] {
-        let mut a = vec!["animate", "--frames", "6", "--format", "tif"];
-        a.extend(sea);
-        a.extend(["--threads", threads, "-o", threads]);
-        common::run_ok(dir.path(), &a);
-    }
-    let frame = |t: &str, k: usize| common::read(&dir.path().join(format!("{t}/frame_{k:05}.tif")));
-    for k in 0..6 {
-        assert_eq!(frame("1", k), frame("2", k), "frame {k}: 1 and 2 threads");
-    }
+    let sea = small_sea(&["--loop-period", "10"]);
+    let frames = frames_are_generate(dir.path(), &sea, 6);
     // Frame 4 is at t = 10 s = T.
-    assert_eq!(frame("1", 0), frame("1", 4), "one period on");
-    assert_ne!(frame("1", 0), frame("1", 1));
-    for k in [1usize, 3] {
-        let t = format!("{}", k as f64 / 0.4);
-        let mut g = vec!["generate", "--time", &t, "-o", "g.tif"];
-        g.extend(sea);
-        common::run_ok(dir.path(), &g);
-        assert_eq!(
-            common::read(&dir.path().join("g.tif")),
-            frame("1", k),
-            "frame {k} and generate --time {t}"
-        );
-    }
+    assert_eq!(frames[0], frames[4], "one period on");
     // Without a loop the exact pair sum sums its pairs at every frame: animate says so, and
     // how to avoid it (the default `auto` takes the fitted method on this deep sea).
     let mut unlooped: Vec<&str> = sea
@@ -323,15 +297,15 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
         .copied()
         .filter(|a| !matches!(*a, "--loop-period" | "10" | "-q"))
         .collect();
-    let err = stderr_of_quiet_free(dir.path(), &unlooped);
-    assert!(!err.contains("note: without --loop-period"), "{err}");
-    unlooped.extend(["--set", "spectrum.nonlinear_method=pairs"]);
     let stderr_of = |out: &str, args: &[&str]| {
         let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", out];
         a.extend(args);
         let run = common::seasynth().current_dir(dir.path()).args(&a).output();
         String::from_utf8(run.unwrap().stderr).unwrap()
     };
+    let err = stderr_of("a", &unlooped);
+    assert!(!err.contains("note: without --loop-period"), "{err}");
+    unlooped.extend(["--set", "spectrum.nonlinear_method=pairs"]);
     let err = stderr_of("u", &unlooped);
     assert!(err.contains("note: without --loop-period"), "{err}");
     let looped: Vec<&str> = sea.iter().copied().filter(|a| *a != "-q").collect();
@@ -342,14 +316,6 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
         .as_u64()
         .expect("loop_multiples in the sidecar");
     assert!(multiples >= 3, "{multiples}");
-}
-
-/// The stderr of a two-frame `animate` of `args` in `dir`.
-fn stderr_of_quiet_free(dir: &std::path::Path, args: &[&str]) -> String {
-    let mut a = vec!["animate", "--frames", "2", "--format", "tif", "-o", "a"];
-    a.extend(args);
-    let run = common::seasynth().current_dir(dir).args(&a).output();
-    String::from_utf8(run.unwrap().stderr).unwrap()
 }
 
 #[test]
