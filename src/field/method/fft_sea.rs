@@ -166,25 +166,31 @@ impl HeightMethod for FftSea {
     }
 
     fn bytes_per_sample(&self) -> u64 {
-        // A second-order sea adds its full-plane bound spectrum (complex f64), a looping
-        // one at most MAX_BINS_PER_CELL complex f32 bins a cell; the fitted method of every
-        // component its components and about a dozen complex f64 arrays of the grid padded
-        // by 3/2 per axis.
+        // A second-order sea by the pair sum adds its full-plane bound spectrum (complex
+        // f64), a looping one at most MAX_BINS_PER_CELL complex f32 bins a cell. The fitted
+        // method of every component (q = 1) adds its components and about a dozen complex
+        // f64 arrays of the grid padded by 3/2 per axis; below q = 1 its padded arrays
+        // cover the box of the paired components, which the sea sets, not the grid (about
+        // 40 MB for a 15 m/s storm over 2 km), so they are not a cost a sample: it is
+        // counted as the pair sum's. `auto` may take either.
         let s = &self.params.spectrum;
         if s.nonlinear.is_linear() {
-            10
-        } else if !matches!(s.nonlinear_method, NonlinearMethod::Fitted) {
-            let bins = match self.params.motion.loop_period_s {
-                Some(_) => 8 * MAX_BINS_PER_CELL as u64,
-                None => 0,
-            };
-            26 + bins
-        } else if s.nonlinear_fraction.is_some_and(|q| q >= 1.0) {
+            return 10;
+        }
+        let bins = match self.params.motion.loop_period_s {
+            Some(_) => 8 * MAX_BINS_PER_CELL as u64,
+            None => 0,
+        };
+        let pairs = 26 + bins;
+        let fitted = if s.nonlinear_fraction.is_some_and(|q| q >= 1.0) {
             10 + 88 + 12 * 16 * 9 / 4
         } else {
-            // The components of q < 1 reach a part of the grid: the padded fields cover
-            // that part (bounded here by the pair sum's full plane).
             26
+        };
+        match s.nonlinear_method {
+            NonlinearMethod::Pairs => pairs,
+            NonlinearMethod::Fitted => fitted,
+            NonlinearMethod::Auto => pairs.max(fitted),
         }
     }
 

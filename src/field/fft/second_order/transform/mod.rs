@@ -13,215 +13,18 @@
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
 //! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
 
-use std::sync::Arc;
-
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
+
+use grid::{Plan, Pool, Reach};
 
 use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, NB, Region, resonance_t};
 use super::{
     C64, Component, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
-    resolved_span, self_kernels,
+    self_kernels,
 };
 use crate::fastmath;
 use crate::grid::signed_index;
-
-/// The smallest even length ≥ n with no prime factor above 5 (a fast transform).
-fn smooth_even(n: usize) -> usize {
-    let smooth = |mut v: usize| {
-        for p in [2, 3, 5] {
-            while v % p == 0 {
-                v /= p;
-            }
-        }
-        v == 1
-    };
-    let mut v = n.max(2);
-    while v % 2 == 1 || !smooth(v) {
-        v += 1;
-    }
-    v
-}
-
-/// The reach of one axis of the paired waves: their largest |index| k, the outputs kept
-/// (|index| ≤ o, o = min(2k, the grid's last resolved index)), and the padded length,
-/// above 2k + o, so that no sum or difference of two waves (|index| ≤ 2k) wraps onto a
-/// kept output (3/2 of the grid when the waves fill it).
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Reach {
-    k: i64,
-    o: i64,
-    len: usize,
-}
-
-impl Reach {
-    fn of(k: i64, grid: usize) -> Self {
-        let hi = resolved_span(grid).1;
-        let o = (2 * k).min(hi);
-        Self {
-            k,
-            o,
-            len: smooth_even((2 * k + o + 1) as usize),
-        }
-    }
-
-    /// Every sum and difference of two waves lands on the grid.
-    fn all_on_grid(&self) -> bool {
-        self.o == 2 * self.k
-    }
-
-    /// The box edge (rad/m) of indices ≤ `i` on an axis of cell `dk`, or the grid's own
-    /// edge `grid_max` when they reach the grid's last resolved index.
-    fn edge(&self, i: i64, dk: f64, grid_max: f64, grid: usize) -> f64 {
-        if i >= resolved_span(grid).1 {
-            grid_max
-        } else {
-            (i as f64 + 0.5) * dk
-        }
-    }
-}
-
-/// Padded arrays given back for reuse (fresh large allocations each cost their page
-/// faults).
-struct Pool<T = C64>(std::sync::Mutex<Vec<Vec<T>>>);
-
-impl<T> Default for Pool<T> {
-    fn default() -> Self {
-        Self(std::sync::Mutex::new(Vec::new()))
-    }
-}
-
-impl<T: Copy + Default + Send> Pool<T> {
-    /// An array of `len` zeros (`T::default()`).
-    fn take(&self, len: usize) -> Vec<T> {
-        let mut v = self.take_any(len);
-        v.fill(T::default());
-        v
-    }
-
-    /// An array of `len` whose values the caller overwrites (a reused one keeps its old
-    /// values).
-    fn take_any(&self, len: usize) -> Vec<T> {
-        let reused = self
-            .0
-            .lock()
-            .expect("no panics while holding the lock")
-            .pop();
-        let mut v = reused.unwrap_or_default();
-        v.resize(len, T::default());
-        v
-    }
-
-    fn give(&self, v: Vec<T>) {
-        self.0
-            .lock()
-            .expect("no panics while holding the lock")
-            .push(v);
-    }
-
-    fn give_all(&self, vs: impl IntoIterator<Item = Vec<T>>) {
-        for v in vs {
-            self.give(v);
-        }
-    }
-
-    /// Frees the arrays given back.
-    fn clear(&self) {
-        self.0
-            .lock()
-            .expect("no panics while holding the lock")
-            .clear();
-    }
-}
-
-/// 2D transforms of a px × py grid (rows of py).
-struct Plan {
-    px: usize,
-    py: usize,
-    inv_x: Arc<dyn Fft<f64>>,
-    inv_y: Arc<dyn Fft<f64>>,
-    fwd_x: Arc<dyn Fft<f64>>,
-    fwd_y: Arc<dyn Fft<f64>>,
-}
-
-impl Plan {
-    fn new(px: usize, py: usize) -> Self {
-        let mut p = FftPlanner::new();
-        Self {
-            px,
-            py,
-            inv_x: p.plan_fft_inverse(px),
-            inv_y: p.plan_fft_inverse(py),
-            fwd_x: p.plan_fft_forward(px),
-            fwd_y: p.plan_fft_forward(py),
-        }
-    }
-
-    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows
-    /// of `a` that `wanted` names transformed by `fa` (the others left as they are):
-    /// `data` (a rows of b) becomes b rows of a.
-    fn two_d(
-        data: &mut Vec<C64>,
-        (a, b): (usize, usize),
-        (fa, fb): (&dyn Fft<f64>, &dyn Fft<f64>),
-        wanted: &(dyn Fn(usize) -> bool + Sync),
-        pool: &Pool,
-    ) {
-        let zero = C64::new(0.0, 0.0);
-        data.par_chunks_mut(b).for_each(|row| {
-            if row.iter().any(|v| *v != zero) {
-                fb.process(row);
-            }
-        });
-        let src = &*data;
-        let mut t = pool.take_any(a * b);
-        // Blocked: each task writes TILE rows of t, reading TILE consecutive values of
-        // every row of `data`.
-        const TILE: usize = 8;
-        t.par_chunks_mut(a * TILE)
-            .enumerate()
-            .for_each(|(c, rows)| {
-                let j0 = c * TILE;
-                let tile = rows.len() / a;
-                for i in 0..a {
-                    let from = &src[i * b + j0..i * b + j0 + tile];
-                    for (jj, &v) in from.iter().enumerate() {
-                        rows[jj * a + i] = v;
-                    }
-                }
-            });
-        t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
-            if wanted(j) {
-                fa.process(row);
-            }
-        });
-        pool.give(std::mem::replace(data, t));
-    }
-
-    /// Spectrum (px rows of py, kx by row) → field (py rows of px, y by row).
-    fn inverse(&self, data: &mut Vec<C64>, pool: &Pool) {
-        let (fa, fb) = (&*self.inv_x, &*self.inv_y);
-        Self::two_d(data, (self.px, self.py), (fa, fb), &|_| true, pool);
-    }
-
-    /// Field (py rows of px) → spectrum (px rows of py).
-    fn forward(&self, data: &mut Vec<C64>, pool: &Pool) {
-        self.forward_rows(data, &|_| true, pool);
-    }
-
-    /// Field (py rows of px) → spectrum (px rows of py), on the kx rows `wanted` names
-    /// (the other rows hold partial sums).
-    fn forward_rows(
-        &self,
-        data: &mut Vec<C64>,
-        wanted: &(dyn Fn(usize) -> bool + Sync),
-        pool: &Pool,
-    ) {
-        let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
-        Self::two_d(data, (self.py, self.px), (fa, fb), wanted, pool);
-    }
-}
 
 /// The single-wave factors of the products.
 #[derive(Clone, Copy, PartialEq)]
@@ -317,6 +120,9 @@ pub struct TransformBound {
     ny: usize,
     /// The reach of the waves on each axis (the padded grid and the outputs kept).
     reach: (Reach, Reach),
+    /// The exact set-down Σ 4ρ_i² K⁻_ii that replaces the difference terms at q = 0 (it
+    /// does not depend on the time).
+    setdown: f64,
     plan: Plan,
     /// The padded arrays given back within a frame, reused by its later steps.
     pool: Pool,
@@ -341,7 +147,12 @@ impl TransformBound {
         fit: KernelFit,
     ) -> Self {
         let reach = reach_of(&comps, nx, ny);
+        let setdown = comps
+            .iter()
+            .map(|c| 4.0 * c.rho * c.rho * self_kernels(c, depth).1)
+            .sum();
         Self {
+            setdown,
             comps,
             depth,
             nx,
@@ -405,9 +216,16 @@ impl TransformBound {
         let (sums, diffs) = me.dropped_pairs();
         info.sum_pairs_dropped = sums;
         info.difference_pairs_dropped = diffs;
-        info.method = Some("fitted".into());
         info.estimated_rel_rms_error = Some(me.fit.rel_rms_error);
         (me, info)
+    }
+
+    /// f(k_i)·w(k_i)·b_i of component `c`: its amplitude `bi` weighted by a factor and
+    /// by w = (|s|/s_p)^e (1 without an exponent).
+    #[inline]
+    fn weighted(&self, c: &Component, bi: C64, f: Factor, exponent: Option<i32>) -> C64 {
+        let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
+        bi * (f.of(c) * w)
     }
 
     /// The field Σ_i f(k_i)·w(k_i)·b_i e^{ik_i·x} on the padded grid (py rows of px).
@@ -415,10 +233,9 @@ impl TransformBound {
         let (px, py) = (self.plan.px, self.plan.py);
         let mut data = pool.take(px * py);
         for (c, &bi) in self.comps.iter().zip(b) {
-            let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
             let row = c.n.rem_euclid(px as i64) as usize;
             let col = c.m.rem_euclid(py as i64) as usize;
-            data[row * py + col] += bi * (f.of(c) * w);
+            data[row * py + col] += self.weighted(c, bi, f, exponent);
         }
         self.plan.inverse(&mut data, pool);
         data
@@ -432,10 +249,9 @@ impl TransformBound {
         let kx = self.reach.0.k;
         let mut data = self.ones.take((2 * kx + 1) as usize * py);
         for (c, &bi) in self.comps.iter().zip(b) {
-            let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
             let row = (c.n + kx) as usize;
             let col = c.m.rem_euclid(py as i64) as usize;
-            data[row * py + col] += bi * (f.of(c) * w);
+            data[row * py + col] += self.weighted(c, bi, f, exponent);
         }
         let zero = C64::new(0.0, 0.0);
         data.par_chunks_mut(py).for_each(|row| {
@@ -646,11 +462,8 @@ impl TransformBound {
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
-        let groups: Vec<(Vec<C64>, bool)> = acc
-            .into_iter()
-            .enumerate()
-            .map(|(j, a)| (transform(a), j > 0))
-            .collect();
+        // Group 0 is the separable part, groups 1 ..= NB the weighted ones.
+        let groups: Vec<Vec<C64>> = acc.into_iter().map(transform).collect();
         let mut sa: Vec<Vec<C64>> = Vec::new();
         if finite {
             let mut sa_acc: Acc = std::array::from_fn(|_| pool.take(px * py));
@@ -670,16 +483,11 @@ impl TransformBound {
             }
             sa = sa_acc.into_iter().skip(1).map(transform).collect();
         }
-        let depth = self.depth;
-        let setdown: f64 = self
-            .comps
-            .iter()
-            .map(|c| 4.0 * c.rho * c.rho * self_kernels(c, depth).1)
-            .sum();
+        let (depth, setdown) = (self.depth, self.setdown);
         let norm = 0.25 / (px * py) as f64;
         let fit = &self.fit;
         // The outputs the waves reach: lines n ≤ o_x, columns |m| ≤ o_y (on the grid).
-        let (ox, oy) = (self.reach.0.o, self.reach.1.o);
+        let oy = self.reach.1.o;
         half.data
             .par_chunks_mut(ny)
             .enumerate()
@@ -712,14 +520,14 @@ impl TransformBound {
                     }
                     let zero_diff = n == 0 && m == 0;
                     let mut h = C64::new(0.0, 0.0);
-                    for (g, (f, weighted)) in groups.iter().enumerate() {
+                    for (g, f) in groups.iter().enumerate() {
                         let (s, d) = unpack(f);
                         let d = if zero_diff { C64::new(0.0, 0.0) } else { d };
-                        if *weighted {
+                        if g == 0 {
+                            h += s + d;
+                        } else {
                             let l = g - 1;
                             h += s * (2.0 * t * cp[l]) + d * (2.0 * t * cm[l]);
-                        } else {
-                            h += s + d;
                         }
                     }
                     for (l, f) in sa.iter().enumerate() {
@@ -741,5 +549,6 @@ impl TransformBound {
     }
 }
 
+mod grid;
 #[cfg(test)]
 mod tests;
