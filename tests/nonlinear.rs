@@ -117,6 +117,8 @@ fn linear_is_the_default_and_second_order_needs_fft_and_no_choppiness() {
         ("spectrum=phillips", "--nonlinear"),
         ("choppiness=0.5", "--choppiness"),
         ("spectrum.nonlinear_fraction=0", "nonlinear_fraction"),
+        ("spectrum.nonlinear_cutoff=0", "nonlinear_cutoff"),
+        ("spectrum.nonlinear_cutoff=-1", "nonlinear_cutoff"),
     ] {
         let mut sets = BASE.to_vec();
         sets.push("nonlinear=second-order");
@@ -320,10 +322,11 @@ fn a_looping_second_order_animation_is_generate_at_each_time_at_any_thread_count
 
 #[test]
 fn the_fitted_method_has_tayfun_skewness_at_any_thread_count_and_every_component_at_q_1() {
-    // `spectrum.nonlinear_method = fitted` (what `auto` takes in deep water): the pair
-    // sum's components (q = 0.99), the fitted kernels by transforms. The same physical
-    // checks as the pair sum's, the sidecar records the method and its error estimate,
-    // the bytes do not depend on the number of threads, and q = 1 pairs every component.
+    // `spectrum.nonlinear_method = fitted` (what `auto` takes in deep water): every wave
+    // within the convergence limit, the fitted kernels by transforms. The same physical
+    // checks as the pair sum's, the sidecar records the method, its error estimate and
+    // the limit, the bytes do not depend on the number of threads, and without the limit
+    // (`inf`) every wave of the grid is paired.
     const SKEW_BAND: (f64, f64) = (0.45, 1.1);
     const HS_TOL: f64 = 0.02;
     // The estimate of the fitted kernels' rms error on this sea (measured 0.043).
@@ -346,9 +349,10 @@ fn the_fitted_method_has_tayfun_skewness_at_any_thread_count_and_every_component
         assert_eq!(info.method.as_deref(), Some("fitted"));
         let e = info.estimated_rel_rms_error.unwrap();
         assert!(e > 0.0 && e < ESTIMATE_MAX, "estimate {e}");
-        // The pair sum's components: those of the default fraction of the variance.
-        assert!(info.components < info.components_available);
-        assert!((info.variance_fraction_kept - 0.99).abs() < 1e-3);
+        // Every wave within the convergence limit (the fitted method's default q = 1).
+        assert_eq!(info.components, info.components_available);
+        assert_eq!(info.variance_fraction_kept, 1.0);
+        assert!(info.cutoff_rad_s.is_some_and(|w| w > 0.0 && w.is_finite()));
         let (sl, _, sigma) = moments(&gl.data);
         let (ss, _, sigma2) = moments(&syn.grid.data);
         let a = analyze(&gl, None);
@@ -408,16 +412,23 @@ fn the_fitted_method_has_tayfun_skewness_at_any_thread_count_and_every_component
     }
     let side = common::json_file(&dirs[0].path().join("f.json"));
     assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
-    // q = 1: every component.
+    let within = side["synthesis"]["second_order"]["components_available"]
+        .as_u64()
+        .unwrap();
+    assert!(side["synthesis"]["second_order"]["cutoff_rad_s"].is_f64());
+    // No convergence limit: every wave of the grid (on this small grid the limit lies
+    // beyond its Nyquist wavenumber, so no more than within it).
     let mut a: Vec<&str> = args
         .iter()
         .map(|x| if *x == "f.tif" { "all.tif" } else { x })
         .collect();
-    a.extend(["--set", "spectrum.nonlinear_fraction=1"]);
+    a.extend(["--set", "spectrum.nonlinear_cutoff=inf"]);
     common::run_ok(dirs[0].path(), &a);
     let side = common::json_file(&dirs[0].path().join("all.json"));
     let so = &side["synthesis"]["second_order"];
     assert_eq!(so["components"], so["components_available"]);
+    assert!(so["components_available"].as_u64().unwrap() >= within);
+    assert!(so.get("cutoff_rad_s").is_none());
 }
 
 /// `bench --second-order` times the linear sea, the pair sum and the fitted method at each

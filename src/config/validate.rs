@@ -293,6 +293,16 @@ impl Params {
                 ));
             }
         }
+        if let Some(c) = self.spectrum.nonlinear_cutoff {
+            if c.is_nan() || c <= 0.0 {
+                return Err(err(
+                    "spectrum.nonlinear_cutoff",
+                    "a convergence criterion C > 0 (2: convergence, 0.5: no bump in the \
+                     trough; inf: every wave)",
+                    c,
+                ));
+            }
+        }
         if self.spectrum.nonlinear == Nonlinear::Linear {
             return Ok(());
         }

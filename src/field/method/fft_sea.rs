@@ -4,14 +4,15 @@
 use super::spectral::Spectral;
 use super::{HeightMethod, finish};
 use crate::config::{
-    AUTO_MAX_ESTIMATE, DEFAULT_NONLINEAR_FRACTION, Nonlinear, NonlinearMethod, Params,
+    AUTO_MAX_ESTIMATE, DEFAULT_NONLINEAR_CUTOFF, DEFAULT_NONLINEAR_FRACTION, Nonlinear,
+    NonlinearMethod, Params,
 };
 use crate::error::Result;
 use crate::field::Synthesis;
 use crate::field::dynamics::{Extras, Surface};
 use crate::field::fft::second_order::looped::{LoopedBound, MAX_BINS_PER_CELL};
 use crate::field::fft::second_order::transform::TransformBound;
-use crate::field::fft::second_order::{SecondOrder, SecondOrderInfo};
+use crate::field::fft::second_order::{Cutoff, SecondOrder, SecondOrderInfo};
 use crate::field::fft::{self, Amplitudes};
 use crate::grid::Grid;
 
@@ -101,8 +102,15 @@ impl HeightMethod for FftSea {
         let s = &self.params.spectrum;
         let second_order = (s.nonlinear == Nonlinear::SecondOrder).then(|| {
             let setup = spectral.setup(0.0);
-            let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
-            let so = SecondOrder::new(&setup, q);
+            let c = s.nonlinear_cutoff.unwrap_or(DEFAULT_NONLINEAR_CUTOFF);
+            let cut = c.is_finite().then(|| Cutoff::of(&setup, c));
+            // The exact pair sum's components: the strongest within the limits (its cost
+            // grows with their square); the fitted method's: every one within them.
+            let pairs_of = || {
+                let q = s.nonlinear_fraction.unwrap_or(DEFAULT_NONLINEAR_FRACTION);
+                SecondOrder::within(&setup, q, cut)
+            };
+            let fitted_of = || SecondOrder::within(&setup, s.nonlinear_fraction.unwrap_or(1.0), cut);
             // The exact pair sum, binned once when the sea loops.
             let pairs = |so: SecondOrder| match LoopedBound::new(&so, &setup) {
                 Some(lb) => Bound::Looped(Box::new(lb)),
@@ -113,13 +121,14 @@ impl HeightMethod for FftSea {
                 Bound::Fitted(Box::new(tb), info)
             };
             match s.nonlinear_method {
-                NonlinearMethod::Pairs => (pairs(so), "pairs", None),
+                NonlinearMethod::Pairs => (pairs(pairs_of()), "pairs", None),
                 NonlinearMethod::Fitted => {
+                    let so = fitted_of();
                     let fit = TransformBound::fit_for(&setup, &so);
                     (fitted(so, fit), "fitted", None)
                 }
                 NonlinearMethod::Auto if self.params.motion.loop_period_s.is_some() => {
-                    let bound = pairs(so);
+                    let bound = pairs(pairs_of());
                     let why = match bound {
                         Bound::Looped(_) => "a looping sea: its pairs summed once for every time",
                         _ => "a looping sea: the exact pairs at every time (the loop is too long to bin)",
@@ -127,6 +136,7 @@ impl HeightMethod for FftSea {
                     (bound, "pairs", Some(format!("auto: {why}")))
                 }
                 NonlinearMethod::Auto => {
+                    let so = fitted_of();
                     let fit = TransformBound::fit_for(&setup, &so);
                     let e = fit.rel_rms_error;
                     let pct = |x: f64| format!("{:.2} %", 100.0 * x);
@@ -144,7 +154,7 @@ impl HeightMethod for FftSea {
                             pct(e),
                             pct(AUTO_MAX_ESTIMATE)
                         );
-                        (pairs(so), "pairs", Some(why))
+                        (pairs(pairs_of()), "pairs", Some(why))
                     }
                 }
             }
@@ -168,11 +178,12 @@ impl HeightMethod for FftSea {
     fn bytes_per_sample(&self) -> u64 {
         // A second-order sea by the pair sum adds its full-plane bound spectrum (complex
         // f64), a looping one at most MAX_BINS_PER_CELL complex f32 bins a cell. The fitted
-        // method of every component (q = 1) adds its components and about a dozen complex
-        // f64 arrays of the grid padded by 3/2 per axis; below q = 1 its padded arrays
-        // cover the box of the paired components, which the sea sets, not the grid (about
-        // 40 MB for a 15 m/s storm over 2 km), so they are not a cost a sample: it is
-        // counted as the pair sum's. `auto` may take either.
+        // method of every wave of the grid adds its components and about a dozen complex
+        // f64 arrays of the grid padded by 3/2 per axis (`nonlinear_cutoff = inf`, q = 1);
+        // within the convergence limit (or below q = 1) its padded arrays cover the box
+        // of the paired components, which the sea sets, not the grid (about 50 MB for a
+        // 15 m/s storm over 2 km), so they are not a cost a sample: it is counted as the
+        // pair sum's. `auto` may take either.
         let s = &self.params.spectrum;
         if s.nonlinear.is_linear() {
             return 10;
@@ -182,7 +193,9 @@ impl HeightMethod for FftSea {
             None => 0,
         };
         let pairs = 26 + bins;
-        let fitted = if s.nonlinear_fraction.is_some_and(|q| q >= 1.0) {
+        let every_wave = s.nonlinear_cutoff.is_some_and(f64::is_infinite)
+            && s.nonlinear_fraction.is_none_or(|q| q >= 1.0);
+        let fitted = if every_wave {
             10 + 88 + 12 * 16 * 9 / 4
         } else {
             26

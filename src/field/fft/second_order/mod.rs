@@ -178,7 +178,13 @@ pub fn self_kernels(c: &Component, depth: Option<f64>) -> (f64, f64) {
 pub struct SecondOrderInfo {
     /// The variance fraction asked for.
     pub fraction: f64,
-    /// Linear components paired, of the resolved ones with energy.
+    /// The convergence limits ω_up and ω_lo of the paired waves, rad/s (absent: every
+    /// wave; ω_lo absent in deep water).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutoff_rad_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutoff_low_rad_s: Option<f64>,
+    /// Linear components paired, of the resolved ones with energy (within the limits).
     pub components: usize,
     pub components_available: usize,
     /// The fraction of the expected variance the paired components carry.
@@ -293,13 +299,17 @@ fn octave(p: f64) -> usize {
     (p.to_bits() >> 52) as usize & 0x7ff
 }
 
-/// The variance E|h̃0|² of `setup`'s draws by octave (sum and count), and their total
-/// (summed line by line, in line order).
-fn octaves(setup: &SpectrumSetup, isa: Isa) -> (Vec<(f64, usize)>, f64) {
+/// The variance E|h̃0|² of `setup`'s draws that `admit` lets in, by octave (sum and
+/// count), and their total (summed line by line, in line order).
+fn octaves(
+    setup: &SpectrumSetup,
+    isa: Isa,
+    admit: &(dyn Fn(&Draw) -> bool + Sync),
+) -> (Vec<(f64, usize)>, f64) {
     let lines = lines_of(setup, isa, &|draws| {
         let mut dense = vec![(0.0f64, 0usize); 0x800];
         let mut total = 0.0;
-        for d in draws {
+        for d in draws.iter().filter(|d| admit(d)) {
             let b = &mut dense[octave(d.p)];
             b.0 += d.p;
             b.1 += 1;
@@ -360,13 +370,106 @@ fn on_grid(n: i64, len: usize) -> bool {
     n >= lo && n <= hi
 }
 
+/// Nestegaard & Stokka's (1995) convergence limit of the second-order series, as WAFO's
+/// second-order simulation applies it: only waves of ω_lo ≤ ω ≤ ω_up are paired, with
+/// ω_up² = C g tanh(k̄d)/A_max and ω_lo² = g tanh(k̄d) A_max/d³ (finite depth), A_max =
+/// √(2 ln 1000)·Hs/4 the expected largest amplitude of a thousand waves and k̄ the
+/// wavenumber of the mean period Tm02. Above ω_up a wave's Eulerian expansion about the
+/// long waves' surface fails (k·A_max > C: the short waves are carried further than their
+/// length, and their pair terms grow with the resolution without converging); those waves
+/// stay linear. C = 2 is the convergence criterion, ½ the "no bump in the trough" one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cutoff {
+    /// ω_up and ω_lo, rad/s (ω_lo 0 in deep water).
+    pub omega_up: f64,
+    pub omega_lo: f64,
+    /// The linear sea's Hs (4√m0) and Tm02 (2π√(m0/m2)) the limits were taken from.
+    pub hs_m: f64,
+    pub tm02_s: f64,
+}
+
+impl Cutoff {
+    /// The limits of criterion `c` for the expected spectrum of `setup`'s draws.
+    pub fn of(setup: &SpectrumSetup, c: f64) -> Self {
+        let isa = Isa::detect();
+        let depth = depth_of(setup.dispersion);
+        let lines = lines_of(setup, isa, &|draws| {
+            let (mut m0, mut m2) = (0.0, 0.0);
+            for d in draws {
+                m0 += 2.0 * d.p;
+                m2 += 2.0 * d.p * G * r_of(setup, depth, d.n, d.m);
+            }
+            (m0, m2)
+        });
+        let (m0, m2) = lines
+            .into_iter()
+            .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
+        Self::from_moments(m0, m2, setup.dispersion, c)
+    }
+
+    /// The limits of criterion `c` for a sea of variance `m0` (m²) and second frequency
+    /// moment `m2` (m²/s²).
+    pub fn from_moments(m0: f64, m2: f64, dispersion: Dispersion, c: f64) -> Self {
+        let hs_m = 4.0 * m0.sqrt();
+        let a_max = (2.0 * 1000f64.ln()).sqrt() * hs_m / 4.0;
+        let omega_bar = if m0 > 0.0 { (m2 / m0).sqrt() } else { 0.0 };
+        let k_bar = dispersion.wavenumber(omega_bar);
+        let (t, lo) = match dispersion {
+            Dispersion::Deep => (1.0, 0.0),
+            Dispersion::Finite { depth_m } => {
+                let t = tanh(k_bar * depth_m);
+                (t, (G * t * a_max / depth_m.powi(3)).sqrt())
+            }
+        };
+        let up = if a_max > 0.0 {
+            (c * G * t / a_max).sqrt()
+        } else {
+            f64::INFINITY
+        };
+        Self {
+            omega_up: up,
+            omega_lo: lo,
+            hs_m,
+            tm02_s: if omega_bar > 0.0 {
+                2.0 * std::f64::consts::PI / omega_bar
+            } else {
+                0.0
+            },
+        }
+    }
+
+    /// The wave of R = ω²/g lies within the limits.
+    #[inline]
+    fn admits(&self, r: f64) -> bool {
+        let w2 = G * r;
+        w2 <= self.omega_up * self.omega_up && w2 >= self.omega_lo * self.omega_lo
+    }
+}
+
+/// R = k tanh(kd) = ω²/g of the grid wave (n, m).
+fn r_of(setup: &SpectrumSetup, depth: Option<f64>, n: i64, m: i64) -> f64 {
+    let (kx, ky) = setup.wavevector(n, m);
+    let k = kx.hypot(ky);
+    match depth {
+        Some(d) => k * tanh(k * d),
+        None => k,
+    }
+}
+
 impl SecondOrder {
     /// The components of `setup` (its draws; the time is not used) that carry `fraction`
     /// of the expected variance.
     pub fn new(setup: &SpectrumSetup, fraction: f64) -> Self {
+        Self::within(setup, fraction, None)
+    }
+
+    /// The components of `setup` within `cutoff` (None: every one) that carry `fraction`
+    /// of the expected variance within it.
+    pub fn within(setup: &SpectrumSetup, fraction: f64, cutoff: Option<Cutoff>) -> Self {
         let isa = Isa::detect();
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let depth = depth_of(setup.dispersion);
+        let admit = |d: &Draw| cutoff.is_none_or(|c| c.admits(r_of(setup, depth, d.n, d.m)));
         // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
         // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
         // packed in their order), sorted in parallel.
@@ -375,7 +478,7 @@ impl SecondOrder {
         // Only the candidates are ranked: the draws of the octaves that reach the fraction
         // of the total, and one octave below them (a margin far beyond the rounding of the
         // octaves' sums); all of them at q = 1, or if the margin fell short.
-        let (by_octave, total) = octaves(setup, isa);
+        let (by_octave, total) = octaves(setup, isa, &admit);
         let available = by_octave.iter().map(|b| b.1).sum();
         let mut floor = 0;
         if fraction < 1.0 {
@@ -390,7 +493,7 @@ impl SecondOrder {
         }
         let select = |floor: usize| {
             let mut keys: Vec<Key> = flat(each_line(setup, isa, &|d| {
-                (octave(d.p) >= floor).then(|| d.key())
+                (octave(d.p) >= floor && admit(&d)).then(|| d.key())
             }));
             keys.par_sort_unstable_by(rank);
             let mut kept = 0.0;
@@ -416,7 +519,7 @@ impl SecondOrder {
         let all: Vec<Component> = match last {
             None => Vec::new(),
             Some(last) => flat(each_line(setup, isa, &|d| {
-                rank(&d.key(), &last).is_le().then(|| {
+                (rank(&d.key(), &last).is_le() && admit(&d)).then(|| {
                     let (kx, ky) = setup.wavevector(d.n, d.m);
                     let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
                     (c.n, c.m, c.p) = (d.n, d.m, d.p);
@@ -426,6 +529,8 @@ impl SecondOrder {
         };
         let info = SecondOrderInfo {
             fraction,
+            cutoff_rad_s: cutoff.map(|c| c.omega_up),
+            cutoff_low_rad_s: cutoff.map(|c| c.omega_lo).filter(|&w| w > 0.0),
             components_available: available,
             variance_fraction_kept: if total > 0.0 { kept / total } else { 0.0 },
             ..SecondOrderInfo::default()

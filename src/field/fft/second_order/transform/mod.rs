@@ -20,7 +20,7 @@ use grid::{Plan, Pool, Reach};
 
 use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, NB, Region, resonance_t};
 use super::{
-    C64, Component, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
+    C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
 };
 use crate::fastmath;
@@ -188,11 +188,16 @@ impl TransformBound {
         }
     }
 
-    /// The components of `setup` (its draws; the time is not used) that carry `fraction`
-    /// of the variance (the pair sum's), the kernels fitted to their part of the
-    /// spectrum, and what the sidecar records (the dropped pairs counted).
-    pub fn for_setup(setup: &SpectrumSetup, fraction: f64) -> (Self, SecondOrderInfo) {
-        let all = SecondOrder::new(setup, fraction);
+    /// The components of `setup` (its draws; the time is not used) within `cutoff` that
+    /// carry `fraction` of the variance there (the pair sum's), the kernels fitted to
+    /// their part of the spectrum, and what the sidecar records (the dropped pairs
+    /// counted).
+    pub fn for_setup(
+        setup: &SpectrumSetup,
+        fraction: f64,
+        cutoff: Option<Cutoff>,
+    ) -> (Self, SecondOrderInfo) {
+        let all = SecondOrder::within(setup, fraction, cutoff);
         let fit = Self::fit_for(setup, &all);
         Self::with_fit(setup, all, fit)
     }
