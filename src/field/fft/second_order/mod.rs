@@ -473,6 +473,28 @@ impl SecondOrder {
         // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
         // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
         // packed in their order), sorted in parallel.
+        let component = |d: &Draw| {
+            let (kx, ky) = setup.wavevector(d.n, d.m);
+            let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
+            (c.n, c.m, c.p) = (d.n, d.m, d.p);
+            c
+        };
+        let info = SecondOrderInfo {
+            fraction,
+            cutoff_rad_s: cutoff.map(|c| c.omega_up),
+            cutoff_low_rad_s: cutoff.map(|c| c.omega_lo).filter(|&w| w > 0.0),
+            ..SecondOrderInfo::default()
+        };
+        if fraction >= 1.0 {
+            // Every draw within the limits: nothing to rank, one pass.
+            let all = flat(each_line(setup, isa, &|d| admit(&d).then(|| component(&d))));
+            let info = SecondOrderInfo {
+                components_available: all.len(),
+                variance_fraction_kept: if all.is_empty() { 0.0 } else { 1.0 },
+                ..info
+            };
+            return Self::of(all, nx, ny, depth, info);
+        }
         type Key = (f64, u64);
         let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
         // Only the candidates are ranked: the draws of the octaves that reach the fraction
@@ -519,21 +541,13 @@ impl SecondOrder {
         let all: Vec<Component> = match last {
             None => Vec::new(),
             Some(last) => flat(each_line(setup, isa, &|d| {
-                (rank(&d.key(), &last).is_le() && admit(&d)).then(|| {
-                    let (kx, ky) = setup.wavevector(d.n, d.m);
-                    let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
-                    (c.n, c.m, c.p) = (d.n, d.m, d.p);
-                    c
-                })
+                (rank(&d.key(), &last).is_le() && admit(&d)).then(|| component(&d))
             })),
         };
         let info = SecondOrderInfo {
-            fraction,
-            cutoff_rad_s: cutoff.map(|c| c.omega_up),
-            cutoff_low_rad_s: cutoff.map(|c| c.omega_lo).filter(|&w| w > 0.0),
             components_available: available,
             variance_fraction_kept: if total > 0.0 { kept / total } else { 0.0 },
-            ..SecondOrderInfo::default()
+            ..info
         };
         Self::of(all, nx, ny, depth, info)
     }
