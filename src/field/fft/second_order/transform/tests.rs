@@ -245,14 +245,13 @@ fn transform_timing() {
     }
 }
 
-#[test]
-fn the_fitted_method_against_the_pair_sum_of_the_same_components() {
-    // 256² over 1024 m, 15 m/s, the default q = 0.99: the fitted method's transforms
-    // cover only the box of the paired components. Wherever `auto` would take it (its
-    // estimate within AUTO_MAX_ESTIMATE), the bound waves are within 1 % rms and 5 % max
-    // of the exact pair sum's (of its rms): deep water broad and narrow, short- and
-    // long-crested, and 40 m (0.2 λp). At 19 m and 10 m (0.1 and 0.05 λp) the estimate
-    // exceeds it, so `auto` keeps the exact pairs there.
+/// The fitted method against the exact pair sum of the same waves (`fraction` of the
+/// variance within criterion `c`'s limit), 256² over 1024 m, 15 m/s: wherever `auto` takes
+/// the fitted method (its estimate within AUTO_MAX_ESTIMATE) and at 40 m (0.2 λp) the
+/// bound waves are within 1 % rms and 5 % max of the pair sum's (of its rms); `auto`
+/// takes it in deep water broad and narrow, short- and long-crested, at 40 m where
+/// `fitted_at_40` says, and at 19 m and 10 m (0.1 and 0.05 λp) it keeps the exact pairs.
+fn against_the_pair_sum_on_six_seas(fraction: f64, c: Option<f64>, fitted_at_40: bool) {
     use crate::config::AUTO_MAX_ESTIMATE;
     const RMS: f64 = 0.01;
     const MAX: f64 = 0.05;
@@ -272,67 +271,14 @@ fn the_fitted_method_against_the_pair_sum_of_the_same_components() {
         (pm.to_vec(), true),
         (js.to_vec(), true),
         ([js, &["spectrum.swell=8"]].concat(), true),
-        ([pm, &["depth=40"]].concat(), true),
-        ([pm, &["depth=19"]].concat(), false),
-        ([pm, &["depth=10"]].concat(), false),
-    ];
-    for (case, fast) in cases {
-        let sets: Vec<&str> = base.iter().copied().chain(case.iter().copied()).collect();
-        let (rms, max, estimate) = fitted_against_the_pair_sum(&sets, 0.99);
-        eprintln!(
-            "{case:?}: rms error {rms:.4}, max {max:.4} (of the rms), estimate {estimate:.4}"
-        );
-        assert_eq!(
-            estimate <= AUTO_MAX_ESTIMATE,
-            fast,
-            "{case:?}: estimate {estimate}"
-        );
-        if fast || case.contains(&"depth=40") {
-            assert!(rms <= RMS && max <= MAX, "{case:?}: rms {rms}, max {max}");
-        }
-    }
-}
-
-/// The rms of a field.
-fn rms_of(f: &[f32]) -> f64 {
-    (f.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / f.len() as f64).sqrt()
-}
-
-#[test]
-fn the_fitted_method_against_the_pair_sum_within_the_convergence_limit() {
-    // The default: every wave within the convergence limit (C = 2), 256² over 1024 m,
-    // 15 m/s. Wherever `auto` takes the fitted method (its estimate within
-    // AUTO_MAX_ESTIMATE) the bound waves are within 1 % rms and 5 % max of the exact pair
-    // sum of the same waves (of its rms): deep water broad and narrow, short- and
-    // long-crested. At 40 m (0.2 λp) the errors are within them too but the estimate is
-    // above the margin; at 19 m and 10 m (0.1 and 0.05 λp) the errors exceed them, and
-    // `auto` keeps the exact pairs there.
-    use crate::config::AUTO_MAX_ESTIMATE;
-    const RMS: f64 = 0.01;
-    const MAX: f64 = 0.05;
-    let base = ["method=fft", "wind-speed=15", "size=256", "extent=1024"];
-    let pm: &[&str] = &[
-        "spectrum=pierson-moskowitz",
-        "spectrum.spreading=hasselmann",
-    ];
-    let js: &[&str] = &[
-        "spectrum=jonswap",
-        "gamma=7",
-        "fetch-km=100",
-        "spectrum.spreading=mitsuyasu",
-    ];
-    let cases: [(Vec<&str>, bool); 6] = [
-        (pm.to_vec(), true),
-        (js.to_vec(), true),
-        ([js, &["spectrum.swell=8"]].concat(), true),
-        ([pm, &["depth=40"]].concat(), false),
+        ([pm, &["depth=40"]].concat(), fitted_at_40),
         ([pm, &["depth=19"]].concat(), false),
         ([pm, &["depth=10"]].concat(), false),
     ];
     let mut results = Vec::new();
     for (case, fast) in cases {
         let sets: Vec<&str> = base.iter().copied().chain(case.iter().copied()).collect();
-        let (rms, max, estimate) = fitted_against_the_pair_sum_within(&sets, 1.0, Some(2.0));
+        let (rms, max, estimate) = fitted_against_the_pair_sum_within(&sets, fraction, c);
         eprintln!(
             "{case:?}: rms error {rms:.4}, max {max:.4} (of the rms), estimate {estimate:.4}"
         );
@@ -348,6 +294,25 @@ fn the_fitted_method_against_the_pair_sum_within_the_convergence_limit() {
             assert!(rms <= RMS && max <= MAX, "{case:?}: rms {rms}, max {max}");
         }
     }
+}
+
+#[test]
+fn the_fitted_method_against_the_pair_sum_of_the_same_components() {
+    // The strongest components of 0.99 of the whole variance (no limit): the fitted
+    // method's transforms cover only their box; `auto` takes it at 40 m too.
+    against_the_pair_sum_on_six_seas(0.99, None, true);
+}
+
+/// The rms of a field.
+fn rms_of(f: &[f32]) -> f64 {
+    (f.iter().map(|&v| f64::from(v).powi(2)).sum::<f64>() / f.len() as f64).sqrt()
+}
+
+#[test]
+fn the_fitted_method_against_the_pair_sum_within_the_convergence_limit() {
+    // The default: every wave within the convergence limit (C = 2). At 40 m the errors
+    // are within the bounds but the estimate (1.02 %) is above the margin.
+    against_the_pair_sum_on_six_seas(1.0, Some(2.0), false);
 }
 
 #[test]
