@@ -77,10 +77,7 @@ impl Component {
     /// The wave of wavevector (kx, ky) with h̃0 = ρ e^{iφ}, at depth `depth` (None: deep).
     pub fn new(kx: f64, ky: f64, rho: f64, phi: f64, depth: Option<f64>) -> Self {
         let k = kx.hypot(ky);
-        let r = match depth {
-            Some(d) => k * tanh(k * d),
-            None => k,
-        };
+        let r = r_of_k(k, depth);
         Self {
             n: 0,
             m: 0,
@@ -446,14 +443,19 @@ impl Cutoff {
     }
 }
 
-/// R = k tanh(kd) = ω²/g of the grid wave (n, m).
-fn r_of(setup: &SpectrumSetup, depth: Option<f64>, n: i64, m: i64) -> f64 {
-    let (kx, ky) = setup.wavevector(n, m);
-    let k = kx.hypot(ky);
+/// R = k tanh(kd) = ω²/g of wavenumber k (`depth` None: deep, R = k).
+#[inline]
+fn r_of_k(k: f64, depth: Option<f64>) -> f64 {
     match depth {
         Some(d) => k * tanh(k * d),
         None => k,
     }
+}
+
+/// R of the grid wave (n, m).
+fn r_of(setup: &SpectrumSetup, depth: Option<f64>, n: i64, m: i64) -> f64 {
+    let (kx, ky) = setup.wavevector(n, m);
+    r_of_k(kx.hypot(ky), depth)
 }
 
 impl SecondOrder {
@@ -470,9 +472,6 @@ impl SecondOrder {
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let depth = depth_of(setup.dispersion);
         let admit = |d: &Draw| cutoff.is_none_or(|c| c.admits(r_of(setup, depth, d.n, d.m)));
-        // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
-        // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
-        // packed in their order), sorted in parallel.
         let component = |d: &Draw| {
             let (kx, ky) = setup.wavevector(d.n, d.m);
             let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
@@ -495,22 +494,23 @@ impl SecondOrder {
             };
             return Self::of(all, nx, ny, depth, info);
         }
+        // The ranking: by E|h̃0|² descending, ties by index (a total order, so the same
+        // whatever the sort or the threads), of light keys (E|h̃0|² and the indices (n, m)
+        // packed in their order), sorted in parallel.
         type Key = (f64, u64);
         let rank = |a: &Key, b: &Key| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1));
         // Only the candidates are ranked: the draws of the octaves that reach the fraction
         // of the total, and one octave below them (a margin far beyond the rounding of the
-        // octaves' sums); all of them at q = 1, or if the margin fell short.
+        // octaves' sums); all of them if the margin fell short.
         let (by_octave, total) = octaves(setup, isa, &admit);
         let available = by_octave.iter().map(|b| b.1).sum();
         let mut floor = 0;
-        if fraction < 1.0 {
-            let mut acc = 0.0;
-            for o in (0..by_octave.len()).rev() {
-                acc += by_octave[o].0;
-                if acc >= fraction * total {
-                    floor = o.saturating_sub(1);
-                    break;
-                }
+        let mut acc = 0.0;
+        for o in (0..by_octave.len()).rev() {
+            acc += by_octave[o].0;
+            if acc >= fraction * total {
+                floor = o.saturating_sub(1);
+                break;
             }
         }
         let select = |floor: usize| {
@@ -521,22 +521,18 @@ impl SecondOrder {
             let mut kept = 0.0;
             let mut count = 0usize;
             for k in &keys {
-                // q = 1 keeps every component (the sum of the largest reaches the total in
-                // floating point before the smallest are added).
-                if fraction < 1.0 && kept >= fraction * total {
+                if kept >= fraction * total {
                     break;
                 }
                 kept += k.0;
                 count += 1;
             }
-            let reached = fraction >= 1.0 || kept >= fraction * total || floor == 0;
+            let reached = kept >= fraction * total || floor == 0;
             reached.then(|| (kept, count.checked_sub(1).map(|i| keys[i])))
         };
         let (kept, last) = select(floor)
             .or_else(|| select(0))
             .expect("every draw reaches the fraction");
-        // (Every draw kept: the whole variance, whatever the order of the sums.)
-        let kept = if fraction >= 1.0 { total } else { kept };
         // The kept components: those ranked no later than the last kept key.
         let all: Vec<Component> = match last {
             None => Vec::new(),

@@ -315,20 +315,25 @@ fn the_fitted_method_against_the_pair_sum_within_the_convergence_limit() {
     against_the_pair_sum_on_six_seas(1.0, Some(2.0), false);
 }
 
+/// The sea of the convergence-limit checks: PM 15 m/s, Hasselmann, over 1024 m, `size`.
+fn storm_params(size: &str) -> crate::config::Params {
+    params_of(&[
+        "method=fft",
+        "wind-speed=15",
+        size,
+        "extent=1024",
+        "spectrum=pierson-moskowitz",
+        "spectrum.spreading=hasselmann",
+    ])
+}
+
 #[test]
 fn the_convergence_limit_of_a_storm_sea() {
     // PM 15 m/s (Hs 4.9 m, Tm02 7.7 s): A_max = √(2 ln 1000)·Hs/4 and ω_up = √(2g/A_max)
     // in deep water (the tanh of k̄d is 1), ω_lo² = g tanh(k̄d) A_max/d³ at 19 m; the waves
     // paired are exactly those within it.
     const TOL: f64 = 1e-12;
-    let params = params_of(&[
-        "method=fft",
-        "wind-speed=15",
-        "size=128",
-        "extent=1024",
-        "spectrum=pierson-moskowitz",
-        "spectrum.spreading=hasselmann",
-    ]);
+    let params = storm_params("size=128");
     let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
     let spec = params.grid_spec();
     let setup = setup_at(spec, model.as_ref(), dispersion, 7, 0.0);
@@ -373,14 +378,7 @@ fn the_bound_waves_beyond_the_limit() {
     // beyond the limit add, and how it grows with the resolution.
     for n in [128usize, 256] {
         let size = format!("size={n}");
-        let params = params_of(&[
-            "method=fft",
-            "wind-speed=15",
-            &size,
-            "extent=1024",
-            "spectrum=pierson-moskowitz",
-            "spectrum.spreading=hasselmann",
-        ]);
+        let params = storm_params(&size);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         let setup = setup_at(spec, model.as_ref(), dispersion, 7, 0.0);
