@@ -47,10 +47,8 @@ use crate::spectrum::{Dispersion, Spectrum};
 
 use super::Component;
 
-/// The basis exponents u of w_u(s) = (|s|/s_p)^u.
-pub const EXPONENTS: [i32; 3] = [-1, 0, 1];
-/// The powers m ≤ DIFF_POWERS of the difference term's basis (δ²/T)^m / T.
-pub const DIFF_POWERS: usize = 3;
+/// The most functions of a term's basis (the Neumann sum basis of finite depth).
+pub const MAX_NB: usize = 10;
 /// Nodes of the coefficients in √|q|, and in the angle of q over [0, π).
 const Q_NODES: usize = 24;
 const ANGLE_NODES: usize = 1;
@@ -59,23 +57,68 @@ const FIT_PAIRS: usize = 60_000;
 /// The polar sample of the spectrum the pairs are drawn from.
 const SAMPLE_RADII: usize = 96;
 const SAMPLE_ANGLES: usize = 72;
-/// The number of basis pairs (u ≤ v).
-pub const NB: usize = EXPONENTS.len() * (EXPONENTS.len() + 1) / 2;
-/// The pairs (u ≤ v) of basis exponents, in the order of the coefficients.
-pub const BASIS_PAIRS: [(usize, usize); NB] = basis_pairs();
+/// The deep-water sum basis: the exponents u of w_u(s) = (|s|/s_p)^u whose symmetric
+/// products (u ≤ v) it takes.
+const DEEP_EXPONENTS: [i32; 3] = [-1, 0, 1];
+/// The powers m ≤ M of the difference term's basis (δ²/T)^m / T: deep water, finite depth.
+const DEEP_DIFF_POWERS: usize = 3;
+const FINITE_DIFF_POWERS: usize = 4;
+/// The order of the finite-depth sum basis (the terms of its Neumann series, m ≤ M).
+const FINITE_NEUMANN_ORDER: usize = 3;
 
-const fn basis_pairs() -> [(usize, usize); NB] {
-    let r = EXPONENTS.len();
-    let mut v = [(0, 0); NB];
-    let (mut a, mut n) = (0, 0);
-    while a < r {
-        let mut b = a;
-        while b < r {
-            v[n] = (a, b);
-            n += 1;
-            b += 1;
+/// One function of the sum term's basis: (T/s_p²)^`t_power` · Σ w·½[x_i^u x_j^v +
+/// x_i^v x_j^u] over its `monomials` (w, u, v), x = |s|/s_p.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SumTerm {
+    pub t_power: i32,
+    pub monomials: Vec<(f64, i32, i32)>,
+}
+
+/// The sum-term basis of deep water: the symmetric products ½[w_u(s_i)w_v(s_j) +
+/// w_v(s_i)w_u(s_j)], u ≤ v ∈ [`DEEP_EXPONENTS`]. In deep water collinear pairs have
+/// G = 1/(2 s_i s_j) exactly (u = v = −1), the far pairs tend to it.
+fn product_basis() -> Vec<SumTerm> {
+    let e = DEEP_EXPONENTS;
+    let mut v = Vec::new();
+    for a in 0..e.len() {
+        for b in a..e.len() {
+            v.push(SumTerm {
+                t_power: 0,
+                monomials: vec![(1.0, e[a], e[b])],
+            });
         }
-        a += 1;
+    }
+    v
+}
+
+/// The sum-term basis of finite depth: the terms of the Neumann series of
+/// G = 1/(2 s_i s_j + P − T), P = R_i + R_j = s_i² + s_j²,
+///
+/// G = Σ_m (T − P)^m / (2 s_i s_j)^{m+1} = Σ_m Σ_{a ≤ m} C(m, a) (−P)^a T^{m−a} / (2 s_i s_j)^{m+1},
+///
+/// each (m, a) a function of the basis with its own fitted coefficient:
+/// (T/s_p²)^{m−a} (x_i² + x_j²)^a / (x_i x_j)^{m+1} = (T/s_p²)^{m−a} Σ_b C(a, b)
+/// x_i^{2b−m−1} x_j^{2(a−b)−m−1}. In shallow water the collinear pairs come near the
+/// sum-frequency resonance (2 s_i s_j + P − T → 2 s_i s_j·2 tanh²kd/(1 + tanh²kd) for two
+/// equal waves), where products of plain powers of s cannot follow G; the series in
+/// (T − P)/(2 s_i s_j) (−0.53 there at 0.1 λp) can.
+fn neumann_basis(order: usize) -> Vec<SumTerm> {
+    let binom = |n: usize, k: usize| (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64);
+    let mut v = Vec::new();
+    for m in 0..=order {
+        for a in 0..=m {
+            let (m_i, a_i) = (m as i32, a as i32);
+            let monomials = (0..=a)
+                .map(|b| {
+                    let b_i = b as i32;
+                    (binom(a, b), 2 * b_i - m_i - 1, 2 * (a_i - b_i) - m_i - 1)
+                })
+                .collect();
+            v.push(SumTerm {
+                t_power: m_i - a_i,
+                monomials,
+            });
+        }
     }
     v
 }
@@ -137,8 +180,10 @@ pub struct KernelFit {
     pub s_ref: f64,
     /// √|q| of the nodes, √(rad/m).
     nodes: Vec<f64>,
-    /// [term][node][basis pair].
+    /// [term][node][basis function].
     coef: [Vec<Vec<f64>>; 2],
+    /// The bases of the two terms.
+    pub bases: Bases,
     /// Angle nodes over [0, π).
     na: usize,
     /// The estimated relative rms error of the bound waves (independent draws).
@@ -306,27 +351,78 @@ fn hats(nodes: &[f64], qn: f64) -> [(usize, f64); 2] {
     [(i, 1.0 - f), (i + 1, f)]
 }
 
-/// The basis of the sum term (`term` 0): the symmetric products
-/// ½[w_u(a)w_v(b) + w_v(a)w_u(b)] of two waves; of the difference term (1): the powers
-/// (δ²/T)^m / T, m ≤ [`DIFF_POWERS`] (the rest zero), T of the output.
-#[inline]
-fn basis(a: &Component, b: &Component, s_ref: f64, term: usize, t: f64) -> [f64; NB] {
-    if term == 1 {
-        // (δ²/T)^m / T, δ = s_i − s_j: the difference term's G depends on δ and T only.
-        let d = a.s.abs() - b.s.abs();
-        let x2 = d * d / t;
-        let mut out = [0.0; NB];
-        let mut v = 1.0 / t;
-        for o in out.iter_mut().take(DIFF_POWERS + 1) {
-            *o = v;
-            v *= x2;
+/// The bases of the two terms: the sum term's functions, the difference term's powers
+/// (δ²/T)^m / T, m ≤ `diff_powers`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bases {
+    pub sum: Vec<SumTerm>,
+    pub diff_powers: usize,
+}
+
+impl Bases {
+    /// Deep water: the products of [`DEEP_EXPONENTS`], powers m ≤ 3; finite depth: the
+    /// Neumann series of order 3, powers m ≤ 4.
+    pub fn for_depth(depth: Option<f64>) -> Self {
+        match depth {
+            None => Self {
+                sum: product_basis(),
+                diff_powers: DEEP_DIFF_POWERS,
+            },
+            Some(_) => Self {
+                sum: neumann_basis(FINITE_NEUMANN_ORDER),
+                diff_powers: FINITE_DIFF_POWERS,
+            },
         }
-        return out;
     }
-    let (xa, xb) = (a.s.abs() / s_ref, b.s.abs() / s_ref);
-    let wa = EXPONENTS.map(|e| xa.powi(e));
-    let wb = EXPONENTS.map(|e| xb.powi(e));
-    BASIS_PAIRS.map(|(u, v)| 0.5 * (wa[u] * wb[v] + wa[v] * wb[u]))
+
+    /// The number of functions of term 0 (sum) or 1 (difference).
+    pub fn len(&self, term: usize) -> usize {
+        if term == 0 {
+            self.sum.len()
+        } else {
+            self.diff_powers + 1
+        }
+    }
+
+    /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read.
+    pub fn exponents(&self) -> (i32, i32) {
+        let each = self.sum.iter().flat_map(|t| t.monomials.iter());
+        let lo = each.clone().map(|&(_, u, v)| u.min(v)).fold(0, i32::min);
+        let hi = each.map(|&(_, u, v)| u.max(v)).fold(0, i32::max);
+        (lo, hi.max(2 * self.diff_powers as i32))
+    }
+
+    /// The basis of the sum term (`term` 0) or the difference term (1) of two waves, T
+    /// of the output (the functions beyond the term's count zero).
+    #[inline]
+    fn eval(&self, a: &Component, b: &Component, s_ref: f64, term: usize, t: f64) -> [f64; MAX_NB] {
+        let mut out = [0.0; MAX_NB];
+        if term == 1 {
+            // (δ²/T)^m / T, δ = s_i − s_j: the difference term's G depends on δ and T only.
+            let d = a.s.abs() - b.s.abs();
+            let x2 = d * d / t;
+            let mut v = 1.0 / t;
+            for o in out.iter_mut().take(self.diff_powers + 1) {
+                *o = v;
+                v *= x2;
+            }
+            return out;
+        }
+        let (xa, xb) = (a.s.abs() / s_ref, b.s.abs() / s_ref);
+        let tt = t / (s_ref * s_ref);
+        for (o, f) in out.iter_mut().zip(&self.sum) {
+            let mut v = 0.0;
+            for &(w, u, e) in &f.monomials {
+                v += w * (0.5 * (xa.powi(u) * xb.powi(e) + xa.powi(e) * xb.powi(u)));
+            }
+            *o = if f.t_power == 0 {
+                v
+            } else {
+                v * tt.powi(f.t_power)
+            };
+        }
+        out
+    }
 }
 
 impl KernelFit {
@@ -349,13 +445,14 @@ impl KernelFit {
         let nodes: Vec<f64> = (0..qn_count)
             .map(|i| q_max.sqrt() * i as f64 / (qn_count - 1) as f64)
             .collect();
-        let nb = NB;
-        let empty = || vec![vec![0.0; nb]; qn_count * na];
+        let bases = Bases::for_depth(depth);
+        let empty = |term: usize| vec![vec![0.0; bases.len(term)]; qn_count * na];
         if waves.is_empty() {
             return Self {
                 s_ref: 1.0,
                 nodes,
-                coef: [empty(), empty()],
+                coef: [empty(0), empty(1)],
+                bases,
                 na,
                 rel_rms_error: 0.0,
                 depth,
@@ -382,20 +479,21 @@ impl KernelFit {
                 bounds.contains(sp.qx, sp.qy).then_some((a, b, sp))
             })
         };
-        let dim = qn_count * na * nb;
         // The two terms' normal equations, each summed in its draws' order (one task a
         // term: the same sums at any thread count).
         let solve = |term: usize, sign: f64| {
+            let nb = bases.len(term);
+            let dim = qn_count * na * nb;
             let mut ata = vec![0.0; dim * dim];
             let mut atb = vec![0.0; dim];
             for (a, b, sp) in pairs(2 * term as u64, sign) {
-                let phi = basis(a, b, s_ref, term, resonance_t(sp.qn, depth));
+                let phi = bases.eval(a, b, s_ref, term, resonance_t(sp.qn, depth));
                 let h = hats2(&nodes, na, sp.qx, sp.qy);
                 let mut idx = [0usize; 64];
                 let mut val = [0.0f64; 64];
                 let mut n = 0;
                 for &(node, hw) in h.iter().filter(|h| h.1 != 0.0) {
-                    for (l, &p) in phi.iter().enumerate() {
+                    for (l, &p) in phi.iter().take(nb).enumerate() {
                         idx[n] = node * nb + l;
                         val[n] = hw * p * sp.num;
                         n += 1;
@@ -409,7 +507,7 @@ impl KernelFit {
                 }
             }
             let sol = solve_ridge(&mut ata, &mut atb, dim);
-            let mut c = empty();
+            let mut c = empty(term);
             for (node, row) in c.iter_mut().enumerate() {
                 row.copy_from_slice(&sol[node * nb..(node + 1) * nb]);
             }
@@ -421,6 +519,7 @@ impl KernelFit {
             s_ref,
             nodes,
             coef,
+            bases: bases.clone(),
             na,
             rel_rms_error: 0.0,
             depth,
@@ -450,17 +549,40 @@ impl KernelFit {
     /// G̃ of the sum (term 0) or difference (term 1) of two waves with output |q| = `qn`.
     pub fn g(&self, term: usize, a: &Component, b: &Component, qx: f64, qy: f64) -> f64 {
         let t = resonance_t(qx.hypot(qy), self.depth);
-        let phi = basis(a, b, self.s_ref, term, t);
+        let phi = self.bases.eval(a, b, self.s_ref, term, t);
         let c = self.coefficients(term, qx, qy);
-        (0..NB).map(|l| c[l] * phi[l]).sum()
+        (0..self.bases.len(term)).map(|l| c[l] * phi[l]).sum()
     }
 
-    /// c_uv(|q|) of a term, in the order of [`BASIS_PAIRS`].
-    pub fn coefficients(&self, term: usize, qx: f64, qy: f64) -> [f64; NB] {
-        let mut c = [0.0; NB];
+    /// The fitted coefficients of a term's basis at output (qx, qy) (beyond the term's
+    /// count zero).
+    pub fn coefficients(&self, term: usize, qx: f64, qy: f64) -> [f64; MAX_NB] {
+        let mut c = [0.0; MAX_NB];
         for (node, hw) in hats2(&self.nodes, self.na, qx, qy) {
-            for (l, v) in c.iter_mut().enumerate() {
-                *v += hw * self.coef[term][node][l];
+            for (v, &k) in c.iter_mut().zip(&self.coef[term][node]) {
+                *v += hw * k;
+            }
+        }
+        c
+    }
+
+    /// What multiplies a term's product fields at output (qx, qy) of T = `t` once
+    /// transformed: the coefficients times the basis's function of the output, (T/s_p²)^t
+    /// of a sum function, (s_p²/T)^m / T of the difference power m (0 at q = 0).
+    pub fn output_coefficients(&self, term: usize, qx: f64, qy: f64, t: f64) -> [f64; MAX_NB] {
+        let mut c = self.coefficients(term, qx, qy);
+        if term == 0 {
+            let tt = t / (self.s_ref * self.s_ref);
+            for (v, f) in c.iter_mut().zip(&self.bases.sum) {
+                if f.t_power != 0 {
+                    *v *= tt.powi(f.t_power);
+                }
+            }
+        } else {
+            let mut scale = 1.0 / t;
+            for v in c.iter_mut().take(self.bases.diff_powers + 1) {
+                *v = if t > 0.0 { *v * scale } else { 0.0 };
+                scale *= self.s_ref * self.s_ref / t;
             }
         }
         c

@@ -18,7 +18,7 @@ use rustfft::num_complex::Complex;
 
 use grid::{Plan, Pool, Reach};
 
-use super::fit::{BASIS_PAIRS, Box2, DIFF_POWERS, EXPONENTS, KernelFit, NB, Region, resonance_t};
+use super::fit::{Box2, KernelFit, MAX_NB, Region, resonance_t};
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -66,21 +66,17 @@ fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
     })
 }
 
-/// The fields of one factor, weighted by (|s|/s_p)^e for e = −1 ..= 2·[`DIFF_POWERS`]
-/// (index e + 1).
-const POWERS: usize = 2 * DIFF_POWERS + 2;
+/// The most fields of one factor: weighted by (|s|/s_p)^e for each exponent e the bases
+/// read (−1 ..= 6 in deep water, −4 ..= 8 at finite depth).
+const POWERS: usize = 13;
 
 /// The accumulators of one padded cell: the separable part (index 0), then group l of the
-/// sum basis pair l (re) and the difference power m = l (im).
-type Cell = [C64; NB + 1];
+/// sum basis function l (re) and the difference power m = l (im).
+type Cell = [C64; MAX_NB + 1];
 
-/// The accumulators of every padded cell (py rows of px), one array an accumulator, each
-/// then transformed in place.
-type Acc = [Vec<C64>; 7];
-const _: () = assert!(
-    NB + 1 == 7,
-    "one accumulator array for each of a cell's values"
-);
+/// The accumulators of every padded cell (py rows of px), one array an accumulator (the
+/// separable part, then each group), each then transformed in place.
+type Acc = Vec<Vec<C64>>;
 
 /// Σ_a w_a Re(f_a conj g_{2m−a}) over the terms of [`expansion`] (f, g the fields of
 /// exponents 0, 1, …).
@@ -93,8 +89,8 @@ fn power_term(f: &[C64], g: &[C64], terms: &[(usize, f64)], m: usize) -> f64 {
     d
 }
 
-/// The fields a product reads: a factor weighted by every power (|s|/s_p)^e,
-/// e = −1 ..= 2·[`DIFF_POWERS`] (index e + 1), or by none (index 0 alone).
+/// The fields a product reads: a factor weighted by every power (|s|/s_p)^e of the
+/// bases' exponents lo ..= hi (index e − lo), or by none (index 0 alone).
 #[derive(Clone, Copy, PartialEq)]
 enum Fields {
     Powers(Factor),
@@ -102,11 +98,9 @@ enum Fields {
 }
 
 impl Fields {
-    fn each(self) -> Vec<(Factor, Option<i32>)> {
+    fn each(self, (lo, hi): (i32, i32)) -> Vec<(Factor, Option<i32>)> {
         match self {
-            Fields::Powers(f) => (-1..=2 * DIFF_POWERS as i32)
-                .map(|e| (f, Some(e)))
-                .collect(),
+            Fields::Powers(f) => (lo..=hi).map(|e| (f, Some(e))).collect(),
             Fields::Plain(f) => vec![(f, None)],
         }
     }
@@ -283,7 +277,8 @@ impl TransformBound {
         const ROWS: usize = 8;
         let (px, py) = (self.plan.px, self.plan.py);
         let kx = self.reach.0.k;
-        let (f_list, g_list) = (fs.each(), gs.each());
+        let exps = self.fit.bases.exponents();
+        let (f_list, g_list) = (fs.each(exps), gs.each(exps));
         let f_one: Vec<Vec<C64>> = f_list
             .iter()
             .map(|&(f, e)| self.stage_one(b, f, e))
@@ -300,61 +295,62 @@ impl TransformBound {
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
         let chunk = px * ROWS;
-        let [a0, a1, a2, a3, a4, a5, a6] = acc;
-        (
-            a0.par_chunks_mut(chunk),
-            a1.par_chunks_mut(chunk),
-            a2.par_chunks_mut(chunk),
-            a3.par_chunks_mut(chunk),
-            a4.par_chunks_mut(chunk),
-            a5.par_chunks_mut(chunk),
-            a6.par_chunks_mut(chunk),
-        )
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(c, (o0, o1, o2, o3, o4, o5, o6))| {
-                let mut out = [o0, o1, o2, o3, o4, o5, o6];
-                let j0 = c * ROWS;
-                let nj = out[0].len() / px;
-                // The rows j0 .. j0 + nj of each field: gathered from its first stage, then
-                // transformed along kx.
-                let rows_of = |ones: &[Vec<C64>]| -> Vec<C64> {
-                    let mut rows = vec![zero; ones.len() * nj * px];
-                    let mut scratch = vec![zero; inv_x.get_inplace_scratch_len()];
-                    for (l, one) in ones.iter().enumerate() {
-                        let block = &mut rows[l * nj * px..(l + 1) * nj * px];
-                        for r in 0..=(2 * kx) as usize {
-                            let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
-                            for jj in 0..nj {
-                                block[jj * px + col] = one[r * py + j0 + jj];
-                            }
-                        }
-                        for row in block.chunks_exact_mut(px) {
-                            inv_x.process_with_scratch(row, &mut scratch);
+        let groups = acc.len();
+        // Each task's rows of every accumulator.
+        let mut tasks: Vec<Vec<&mut [C64]>> = Vec::new();
+        for a in acc.iter_mut() {
+            for (c, rows) in a.chunks_mut(chunk).enumerate() {
+                if tasks.len() <= c {
+                    tasks.push(Vec::with_capacity(MAX_NB + 1));
+                }
+                tasks[c].push(rows);
+            }
+        }
+        tasks.into_par_iter().enumerate().for_each(|(c, mut out)| {
+            let j0 = c * ROWS;
+            let nj = out[0].len() / px;
+            // The rows j0 .. j0 + nj of each field: gathered from its first stage, then
+            // transformed along kx.
+            let rows_of = |ones: &[Vec<C64>]| -> Vec<C64> {
+                let mut rows = vec![zero; ones.len() * nj * px];
+                let mut scratch = vec![zero; inv_x.get_inplace_scratch_len()];
+                for (l, one) in ones.iter().enumerate() {
+                    let block = &mut rows[l * nj * px..(l + 1) * nj * px];
+                    for r in 0..=(2 * kx) as usize {
+                        let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                        for jj in 0..nj {
+                            block[jj * px + col] = one[r * py + j0 + jj];
                         }
                     }
-                    rows
-                };
-                let fr = rows_of(&f_one);
-                let gr = if gs == fs { Vec::new() } else { rows_of(g_src) };
-                let gr = if gs == fs { &fr } else { &gr };
-                let (nf, ng) = (f_one.len(), g_src.len());
-                for jj in 0..nj {
-                    for x in 0..px {
-                        let at = |rows: &[C64], l: usize| rows[(l * nj + jj) * px + x];
-                        let fv: [C64; POWERS] =
-                            std::array::from_fn(|l| if l < nf { at(&fr, l) } else { zero });
-                        let gv: [C64; POWERS] =
-                            std::array::from_fn(|l| if l < ng { at(gr, l) } else { zero });
-                        let i = jj * px + x;
-                        let mut cell: Cell = std::array::from_fn(|g| out[g][i]);
-                        add(&mut cell, &fv, &gv);
-                        for (o, v) in out.iter_mut().zip(cell) {
-                            o[i] = v;
-                        }
+                    for row in block.chunks_exact_mut(px) {
+                        inv_x.process_with_scratch(row, &mut scratch);
                     }
                 }
-            });
+                rows
+            };
+            let fr = rows_of(&f_one);
+            let gr = if gs == fs { Vec::new() } else { rows_of(g_src) };
+            let gr = if gs == fs { &fr } else { &gr };
+            let (nf, ng) = (f_one.len(), g_src.len());
+            for jj in 0..nj {
+                for x in 0..px {
+                    let at = |rows: &[C64], l: usize| rows[(l * nj + jj) * px + x];
+                    let fv: [C64; POWERS] =
+                        std::array::from_fn(|l| if l < nf { at(&fr, l) } else { zero });
+                    let gv: [C64; POWERS] =
+                        std::array::from_fn(|l| if l < ng { at(gr, l) } else { zero });
+                    let i = jj * px + x;
+                    let mut cell: Cell = [zero; MAX_NB + 1];
+                    for (v, o) in cell.iter_mut().zip(out.iter()) {
+                        *v = o[i];
+                    }
+                    add(&mut cell, &fv, &gv);
+                    for (o, v) in out.iter_mut().zip(cell).take(groups) {
+                        o[i] = v;
+                    }
+                }
+            }
+        });
         self.ones.give_all(f_one.into_iter().chain(g_one));
     }
 
@@ -425,14 +421,19 @@ impl TransformBound {
             self.plan.forward_rows(&mut acc, &kept_row, pool);
             acc
         };
-        // The fields of exponent e are at index e + 1.
-        let at = |e: i32| (e + 1) as usize;
-        let terms: Vec<Vec<(usize, f64)>> =
-            (0..=DIFF_POWERS).map(|m| expansion(m).collect()).collect();
+        // The fields of exponent e are at index e − lo.
+        let bases = &self.fit.bases;
+        let lo = bases.exponents().0;
+        let at = |e: i32| (e - lo) as usize;
+        let terms: Vec<Vec<(usize, f64)>> = (0..=bases.diff_powers)
+            .map(|m| expansion(m).collect())
+            .collect();
+        // The separable part and a group for each function of the larger basis.
+        let groups = 1 + bases.len(0).max(bases.len(1));
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g). The
         // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
         // fields below).
-        let mut acc: Acc = std::array::from_fn(|_| pool.take(px * py));
+        let mut acc: Acc = (0..groups).map(|_| pool.take(px * py)).collect();
         self.each_cell(
             &b,
             Fields::Plain(Factor::W0),
@@ -456,8 +457,10 @@ impl TransformBound {
                 |c, p, _| {
                     let p0 = p[at(0)];
                     c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
-                    for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
-                        c[1 + l].re += sign * (p[at(EXPONENTS[u])] * p[at(EXPONENTS[v])]).re;
+                    for (l, f) in bases.sum.iter().enumerate() {
+                        for &(w, u, v) in &f.monomials {
+                            c[1 + l].re += sign * w * (p[at(u)] * p[at(v)]).re;
+                        }
                     }
                     for (m, t) in terms.iter().enumerate() {
                         c[1 + m].im += power_term(&p[at(0)..], &p[at(0)..], t, m);
@@ -467,19 +470,21 @@ impl TransformBound {
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
-        // Group 0 is the separable part, groups 1 ..= NB the weighted ones.
-        let groups: Vec<Vec<C64>> = acc.into_iter().map(transform).collect();
+        // Group 0 is the separable part, groups 1.. the weighted ones.
+        let transformed: Vec<Vec<C64>> = acc.into_iter().map(transform).collect();
         let mut sa: Vec<Vec<C64>> = Vec::new();
         if finite {
-            let mut sa_acc: Acc = std::array::from_fn(|_| pool.take(px * py));
+            let mut sa_acc: Acc = (0..groups).map(|_| pool.take(px * py)).collect();
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
                 let (fs, gs) = (Fields::Powers(f), Fields::Powers(g));
                 self.each_cell(&b, fs, gs, &mut sa_acc, |c, pf, pg| {
-                    for (l, &(u, v)) in BASIS_PAIRS.iter().enumerate() {
-                        let (u, v) = (at(EXPONENTS[u]), at(EXPONENTS[v]));
-                        c[1 + l].re += (pf[u] * pg[v]).re + (pf[v] * pg[u]).re;
+                    for (l, f) in bases.sum.iter().enumerate() {
+                        for &(w, u, v) in &f.monomials {
+                            let (u, v) = (at(u), at(v));
+                            c[1 + l].re += w * ((pf[u] * pg[v]).re + (pf[v] * pg[u]).re);
+                        }
                     }
                     for (m, t) in terms.iter().enumerate() {
                         c[1 + m].im += 2.0 * sign * power_term(&pf[at(0)..], &pg[at(0)..], t, m);
@@ -514,18 +519,13 @@ impl TransformBound {
                     let (qx, qy) = setup.wavevector(n, m);
                     let qn = qx.hypot(qy);
                     let t = resonance_t(qn, depth);
-                    let cp = fit.coefficients(0, qx, qy);
-                    // The difference powers: c_m (s_p² / T)^m / T on δ^{2m} in units of s_p.
-                    let mut cm = fit.coefficients(1, qx, qy);
-                    // (At q = 0 the set-down replaces the difference terms.)
-                    let mut scale = 1.0 / t;
-                    for c in cm.iter_mut() {
-                        *c = if t > 0.0 { *c * scale } else { 0.0 };
-                        scale *= fit.s_ref * fit.s_ref / t;
-                    }
+                    let cp = fit.output_coefficients(0, qx, qy, t);
+                    // The difference powers: c_m (s_p² / T)^m / T on δ^{2m} in units of s_p
+                    // (at q = 0 the set-down replaces the difference terms).
+                    let cm = fit.output_coefficients(1, qx, qy, t);
                     let zero_diff = n == 0 && m == 0;
                     let mut h = C64::new(0.0, 0.0);
-                    for (g, f) in groups.iter().enumerate() {
+                    for (g, f) in transformed.iter().enumerate() {
                         let (s, d) = unpack(f);
                         let d = if zero_diff { C64::new(0.0, 0.0) } else { d };
                         if g == 0 {
