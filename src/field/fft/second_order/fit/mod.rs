@@ -319,8 +319,8 @@ fn uniform(t: u64, salt: u64) -> (f64, f64) {
 
 /// Hat weights of (√|q|, angle of q mod π): (node, weight) four times.
 #[inline]
-fn hats2(nodes: &[f64], na: usize, qx: f64, qy: f64) -> [(usize, f64); 4] {
-    let h = hats(nodes, qx.hypot(qy));
+fn hats2(nodes: &[f64], na: usize, qn: f64, qx: f64, qy: f64) -> [(usize, f64); 4] {
+    let h = hats(nodes, qn);
     if na == 1 {
         return [(h[0].0, h[0].1), (h[1].0, h[1].1), (0, 0.0), (0, 0.0)];
     }
@@ -488,7 +488,7 @@ impl KernelFit {
             let mut atb = vec![0.0; dim];
             for (a, b, sp) in pairs(2 * term as u64, sign) {
                 let phi = bases.eval(a, b, s_ref, term, resonance_t(sp.qn, depth));
-                let h = hats2(&nodes, na, sp.qx, sp.qy);
+                let h = hats2(&nodes, na, sp.qn, sp.qx, sp.qy);
                 let mut idx = [0usize; 64];
                 let mut val = [0.0f64; 64];
                 let mut n = 0;
@@ -546,19 +546,26 @@ impl KernelFit {
         fit
     }
 
-    /// G̃ of the sum (term 0) or difference (term 1) of two waves with output |q| = `qn`.
+    /// G̃ of the sum (term 0) or difference (term 1) of two waves with output q.
     pub fn g(&self, term: usize, a: &Component, b: &Component, qx: f64, qy: f64) -> f64 {
-        let t = resonance_t(qx.hypot(qy), self.depth);
+        let qn = qx.hypot(qy);
+        let t = resonance_t(qn, self.depth);
         let phi = self.bases.eval(a, b, self.s_ref, term, t);
-        let c = self.coefficients(term, qx, qy);
+        let c = self.coefficients(term, self.hats(qn, qx, qy));
         (0..self.bases.len(term)).map(|l| c[l] * phi[l]).sum()
     }
 
-    /// The fitted coefficients of a term's basis at output (qx, qy) (beyond the term's
-    /// count zero).
-    pub fn coefficients(&self, term: usize, qx: f64, qy: f64) -> [f64; MAX_NB] {
+    /// The nodes of output q (of norm `qn`) and their weights.
+    #[inline]
+    fn hats(&self, qn: f64, qx: f64, qy: f64) -> [(usize, f64); 4] {
+        hats2(&self.nodes, self.na, qn, qx, qy)
+    }
+
+    /// The fitted coefficients of a term's basis at an output of nodes `hats` (beyond
+    /// the term's count zero).
+    fn coefficients(&self, term: usize, hats: [(usize, f64); 4]) -> [f64; MAX_NB] {
         let mut c = [0.0; MAX_NB];
-        for (node, hw) in hats2(&self.nodes, self.na, qx, qy) {
+        for (node, hw) in hats {
             for (v, &k) in c.iter_mut().zip(&self.coef[term][node]) {
                 *v += hw * k;
             }
@@ -566,26 +573,32 @@ impl KernelFit {
         c
     }
 
-    /// What multiplies a term's product fields at output (qx, qy) of T = `t` once
-    /// transformed: the coefficients times the basis's function of the output, (T/s_p²)^t
-    /// of a sum function, (s_p²/T)^m / T of the difference power m (0 at q = 0).
-    pub fn output_coefficients(&self, term: usize, qx: f64, qy: f64, t: f64) -> [f64; MAX_NB] {
-        let mut c = self.coefficients(term, qx, qy);
-        if term == 0 {
-            let tt = t / (self.s_ref * self.s_ref);
-            for (v, f) in c.iter_mut().zip(&self.bases.sum) {
-                if f.t_power != 0 {
-                    *v *= tt.powi(f.t_power);
-                }
-            }
-        } else {
-            let mut scale = 1.0 / t;
-            for v in c.iter_mut().take(self.bases.diff_powers + 1) {
-                *v = if t > 0.0 { *v * scale } else { 0.0 };
-                scale *= self.s_ref * self.s_ref / t;
+    /// What multiplies the two terms' product fields at output q = (qx, qy) of norm `qn`
+    /// and T = `t` once transformed: the coefficients times the basis's function of the
+    /// output, (T/s_p²)^t of a sum function, (s_p²/T)^m / T of the difference power m (0
+    /// at q = 0).
+    pub fn output_coefficients(
+        &self,
+        qn: f64,
+        qx: f64,
+        qy: f64,
+        t: f64,
+    ) -> ([f64; MAX_NB], [f64; MAX_NB]) {
+        let hats = self.hats(qn, qx, qy);
+        let mut sum = self.coefficients(0, hats);
+        let tt = t / (self.s_ref * self.s_ref);
+        for (v, f) in sum.iter_mut().zip(&self.bases.sum) {
+            if f.t_power != 0 {
+                *v *= tt.powi(f.t_power);
             }
         }
-        c
+        let mut diff = self.coefficients(1, hats);
+        let mut scale = 1.0 / t;
+        for v in diff.iter_mut().take(self.bases.diff_powers + 1) {
+            *v = if t > 0.0 { *v * scale } else { 0.0 };
+            scale *= self.s_ref * self.s_ref / t;
+        }
+        (sum, diff)
     }
 
     /// The approximate kernel ¼[sep + num·G̃] of two different waves.

@@ -70,23 +70,33 @@ fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
 /// read (−1 ..= 6 in deep water, −4 ..= 8 at finite depth).
 const POWERS: usize = 13;
 
-/// The accumulators of one padded cell: the separable part (index 0), then group l of the
-/// sum basis function l (re) and the difference power m = l (im).
-type Cell = [C64; MAX_NB + 1];
-
 /// The accumulators of every padded cell (py rows of px), one array an accumulator (the
 /// separable part, then each group), each then transformed in place.
 type Acc = Vec<Vec<C64>>;
 
-/// Σ_a w_a Re(f_a conj g_{2m−a}) over the terms of [`expansion`] (f, g the fields of
-/// exponents 0, 1, …).
+/// `out` += Σ_a w_a Re(f_a conj g_{2m−a}) at each cell of a row, over the terms of
+/// [`expansion`] (f, g the rows of the fields of exponents 0, 1, …), summed in the terms'
+/// order, then scaled (`sum` a row of scratch).
 #[inline]
-fn power_term(f: &[C64], g: &[C64], terms: &[(usize, f64)], m: usize) -> f64 {
-    let mut d = 0.0;
+fn power_term(
+    out: &mut [C64],
+    f: &[&[C64]],
+    g: &[&[C64]],
+    terms: &[(usize, f64)],
+    m: usize,
+    scale: f64,
+    sum: &mut Vec<f64>,
+) {
+    sum.clear();
+    sum.resize(out.len(), 0.0);
     for &(a, w) in terms {
-        d += w * (f[a] * g[2 * m - a].conj()).re;
+        for ((d, x), y) in sum.iter_mut().zip(f[a]).zip(g[2 * m - a]) {
+            *d += w * (x * y.conj()).re;
+        }
     }
-    d
+    for (o, d) in out.iter_mut().zip(sum.iter()) {
+        o.im += scale * d;
+    }
 }
 
 /// The fields a product reads: a factor weighted by every power (|s|/s_p)^e of the
@@ -261,18 +271,19 @@ impl TransformBound {
         data
     }
 
-    /// `add(cell, f, g)` at every padded cell (py rows of px), with the values there of
-    /// the fields of `fs` and `gs` (the fields of the terms' factors, each transformed
-    /// once): the transforms' first stage whole ([`Self::stage_one`]), the second (along
-    /// kx) a few rows of y at a time, just before their products, so that no whole field
-    /// is held. The same values as the whole fields' transforms.
+    /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
+    /// row, and the row of each field of `fs` and `gs` (the fields of the terms'
+    /// factors, each transformed once): the transforms' first stage whole
+    /// ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just before
+    /// their products, so that no whole field is held. The same values as the whole
+    /// fields' transforms.
     fn each_cell(
         &self,
         b: &[C64],
         fs: Fields,
         gs: Fields,
         acc: &mut Acc,
-        add: impl Fn(&mut Cell, &[C64; POWERS], &[C64; POWERS]) + Sync,
+        add: impl Fn(&mut [&mut [C64]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
         const ROWS: usize = 8;
         let (px, py) = (self.plan.px, self.plan.py);
@@ -295,7 +306,6 @@ impl TransformBound {
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
         let chunk = px * ROWS;
-        let groups = acc.len();
         // Each task's rows of every accumulator.
         let mut tasks: Vec<Vec<&mut [C64]>> = Vec::new();
         for a in acc.iter_mut() {
@@ -306,51 +316,56 @@ impl TransformBound {
                 tasks[c].push(rows);
             }
         }
-        tasks.into_par_iter().enumerate().for_each(|(c, mut out)| {
-            let j0 = c * ROWS;
-            let nj = out[0].len() / px;
-            // The rows j0 .. j0 + nj of each field: gathered from its first stage, then
-            // transformed along kx.
-            let rows_of = |ones: &[Vec<C64>]| -> Vec<C64> {
-                let mut rows = vec![zero; ones.len() * nj * px];
-                let mut scratch = vec![zero; inv_x.get_inplace_scratch_len()];
-                for (l, one) in ones.iter().enumerate() {
-                    let block = &mut rows[l * nj * px..(l + 1) * nj * px];
-                    for r in 0..=(2 * kx) as usize {
-                        let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
-                        for jj in 0..nj {
-                            block[jj * px + col] = one[r * py + j0 + jj];
-                        }
-                    }
-                    for row in block.chunks_exact_mut(px) {
-                        inv_x.process_with_scratch(row, &mut scratch);
+        // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
+        // zero before the second stage.
+        let gap = (kx + 1) as usize..(px as i64 - kx).max(kx + 1) as usize;
+        // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
+        // after another's): gathered from its first stage, then transformed along kx.
+        let rows_of = |ones: &[Vec<C64>], j0: usize, nj: usize, rows: &mut Vec<C64>, scratch: &mut Vec<C64>| {
+            rows.resize(ones.len() * nj * px, zero);
+            scratch.resize(inv_x.get_inplace_scratch_len(), zero);
+            for (l, one) in ones.iter().enumerate() {
+                let block = &mut rows[l * nj * px..(l + 1) * nj * px];
+                for row in block.chunks_exact_mut(px) {
+                    row[gap.clone()].fill(zero);
+                }
+                for r in 0..=(2 * kx) as usize {
+                    let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                    for jj in 0..nj {
+                        block[jj * px + col] = one[r * py + j0 + jj];
                     }
                 }
-                rows
-            };
-            let fr = rows_of(&f_one);
-            let gr = if gs == fs { Vec::new() } else { rows_of(g_src) };
-            let gr = if gs == fs { &fr } else { &gr };
-            let (nf, ng) = (f_one.len(), g_src.len());
-            for jj in 0..nj {
-                for x in 0..px {
-                    let at = |rows: &[C64], l: usize| rows[(l * nj + jj) * px + x];
-                    let fv: [C64; POWERS] =
-                        std::array::from_fn(|l| if l < nf { at(&fr, l) } else { zero });
-                    let gv: [C64; POWERS] =
-                        std::array::from_fn(|l| if l < ng { at(gr, l) } else { zero });
-                    let i = jj * px + x;
-                    let mut cell: Cell = [zero; MAX_NB + 1];
-                    for (v, o) in cell.iter_mut().zip(out.iter()) {
-                        *v = o[i];
-                    }
-                    add(&mut cell, &fv, &gv);
-                    for (o, v) in out.iter_mut().zip(cell).take(groups) {
-                        o[i] = v;
-                    }
+                for row in block.chunks_exact_mut(px) {
+                    inv_x.process_with_scratch(row, scratch);
                 }
             }
-        });
+        };
+        let same = gs == fs;
+        tasks.into_par_iter().enumerate().for_each_init(
+            || (Vec::new(), Vec::new(), Vec::new()),
+            |(fr, gr, scratch), (c, mut out)| {
+                let j0 = c * ROWS;
+                let nj = out[0].len() / px;
+                rows_of(&f_one, j0, nj, fr, scratch);
+                if !same {
+                    rows_of(g_src, j0, nj, gr, scratch);
+                }
+                let gr = if same { &*fr } else { &*gr };
+                let (nf, ng) = (f_one.len(), g_src.len());
+                for jj in 0..nj {
+                    let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
+                    let fv: [&[C64]; POWERS] =
+                        std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
+                    let gv: [&[C64]; POWERS] =
+                        std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
+                    let mut rows: Vec<&mut [C64]> = out
+                        .iter_mut()
+                        .map(|o| &mut o[jj * px..(jj + 1) * px])
+                        .collect();
+                    add(&mut rows, &fv, &gv);
+                }
+            },
+        );
         self.ones.give_all(f_one.into_iter().chain(g_one));
     }
 
@@ -440,8 +455,9 @@ impl TransformBound {
             Fields::Plain(Factor::R),
             &mut acc,
             |c, o, r| {
-                let (o, r) = (o[0], r[0]);
-                c[0] += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
+                for ((c, o), r) in c[0].iter_mut().zip(o[0]).zip(r[0]) {
+                    *c += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
+                }
             },
         );
         // Group l: the sum term's basis pair l (re) and the difference term's power m = l
@@ -455,15 +471,21 @@ impl TransformBound {
                 Fields::Powers(f),
                 &mut acc,
                 |c, p, _| {
-                    let p0 = p[at(0)];
-                    c[0] += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                    for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
+                        *c += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                    }
                     for (l, f) in bases.sum.iter().enumerate() {
                         for &(w, u, v) in &f.monomials {
-                            c[1 + l].re += sign * w * (p[at(u)] * p[at(v)]).re;
+                            let k = sign * w;
+                            for ((c, a), b) in c[1 + l].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
+                                c.re += k * (a * b).re;
+                            }
                         }
                     }
+                    let mut sum = Vec::new();
                     for (m, t) in terms.iter().enumerate() {
-                        c[1 + m].im += power_term(&p[at(0)..], &p[at(0)..], t, m);
+                        let p = &p[at(0)..];
+                        power_term(c[1 + m], p, p, t, m, 1.0, &mut sum);
                     }
                 },
             );
@@ -483,11 +505,16 @@ impl TransformBound {
                     for (l, f) in bases.sum.iter().enumerate() {
                         for &(w, u, v) in &f.monomials {
                             let (u, v) = (at(u), at(v));
-                            c[1 + l].re += w * ((pf[u] * pg[v]).re + (pf[v] * pg[u]).re);
+                            let rows = pf[u].iter().zip(pg[v]).zip(pf[v].iter().zip(pg[u]));
+                            for (c, ((fu, gv), (fv, gu))) in c[1 + l].iter_mut().zip(rows) {
+                                c.re += w * ((fu * gv).re + (fv * gu).re);
+                            }
                         }
                     }
+                    let mut sum = Vec::new();
                     for (m, t) in terms.iter().enumerate() {
-                        c[1 + m].im += 2.0 * sign * power_term(&pf[at(0)..], &pg[at(0)..], t, m);
+                        let (f, g) = (&pf[at(0)..], &pg[at(0)..]);
+                        power_term(c[1 + m], f, g, t, m, 2.0 * sign, &mut sum);
                     }
                 });
             }
@@ -519,10 +546,9 @@ impl TransformBound {
                     let (qx, qy) = setup.wavevector(n, m);
                     let qn = qx.hypot(qy);
                     let t = resonance_t(qn, depth);
-                    let cp = fit.output_coefficients(0, qx, qy, t);
                     // The difference powers: c_m (s_p² / T)^m / T on δ^{2m} in units of s_p
                     // (at q = 0 the set-down replaces the difference terms).
-                    let cm = fit.output_coefficients(1, qx, qy, t);
+                    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
                     let zero_diff = n == 0 && m == 0;
                     let mut h = C64::new(0.0, 0.0);
                     for (g, f) in transformed.iter().enumerate() {
