@@ -252,11 +252,13 @@ impl TransformBound {
 
     /// The first stage of a field's inverse transform: Σ over the components of
     /// f(k_i)·w(k_i)·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each row
-    /// transformed along ky (rows of zeros stay zero).
+    /// transformed along ky (rows of zeros stay zero), then transposed: py rows of
+    /// 2k_x + 1, so that the second stage reads a few rows of y in one run.
     fn stage_one(&self, b: &[C64], f: Factor, exponent: Option<i32>) -> Vec<C64> {
         let py = self.plan.py;
         let kx = self.reach.0.k;
-        let mut data = self.ones.take((2 * kx + 1) as usize * py);
+        let w = (2 * kx + 1) as usize;
+        let mut data = self.ones.take(w * py);
         for (c, &bi) in self.comps.iter().zip(b) {
             let row = (c.n + kx) as usize;
             let col = c.m.rem_euclid(py as i64) as usize;
@@ -268,7 +270,21 @@ impl TransformBound {
                 self.plan.inv_y.process(row);
             }
         });
-        data
+        // Blocked: each task writes TILE rows of y, reading TILE consecutive values of
+        // every kx row.
+        const TILE: usize = 8;
+        let mut t = self.ones.take_any(w * py);
+        t.par_chunks_mut(w * TILE).enumerate().for_each(|(c, rows)| {
+            let y0 = c * TILE;
+            for r in 0..w {
+                let from = &data[r * py + y0..][..rows.len() / w];
+                for (jj, &v) in from.iter().enumerate() {
+                    rows[jj * w + r] = v;
+                }
+            }
+        });
+        self.ones.give(data);
+        t
     }
 
     /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
@@ -286,7 +302,7 @@ impl TransformBound {
         add: impl Fn(&mut [&mut [C64]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
         const ROWS: usize = 8;
-        let (px, py) = (self.plan.px, self.plan.py);
+        let px = self.plan.px;
         let kx = self.reach.0.k;
         let exps = self.fit.bases.exponents();
         let (f_list, g_list) = (fs.each(exps), gs.each(exps));
@@ -319,6 +335,7 @@ impl TransformBound {
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
         let gap = (kx + 1) as usize..(px as i64 - kx).max(kx + 1) as usize;
+        let w = (2 * kx + 1) as usize;
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.
         let rows_of = |ones: &[Vec<C64>], j0: usize, nj: usize, rows: &mut Vec<C64>, scratch: &mut Vec<C64>| {
@@ -326,16 +343,14 @@ impl TransformBound {
             scratch.resize(inv_x.get_inplace_scratch_len(), zero);
             for (l, one) in ones.iter().enumerate() {
                 let block = &mut rows[l * nj * px..(l + 1) * nj * px];
-                for row in block.chunks_exact_mut(px) {
+                for (jj, row) in block.chunks_exact_mut(px).enumerate() {
+                    // Row y of the first stage: n = −k_x ..= k_x, wrapped into the row.
+                    let from = &one[(j0 + jj) * w..][..w];
+                    // (px > 2k_x + o_x: the wrapped indices never meet.)
+                    let k = kx as usize;
                     row[gap.clone()].fill(zero);
-                }
-                for r in 0..=(2 * kx) as usize {
-                    let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
-                    for jj in 0..nj {
-                        block[jj * px + col] = one[r * py + j0 + jj];
-                    }
-                }
-                for row in block.chunks_exact_mut(px) {
+                    row[px - k..].copy_from_slice(&from[..k]);
+                    row[..=k].copy_from_slice(&from[k..]);
                     inv_x.process_with_scratch(row, scratch);
                 }
             }
