@@ -384,10 +384,11 @@ impl Bases {
         }
     }
 
-    /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read.
+    /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read
+    /// (−1 and 1 at least: they also give the separable part's R_i + R_j).
     pub fn exponents(&self) -> (i32, i32) {
         let each = self.sum.iter().flat_map(|t| t.monomials.iter());
-        let lo = each.clone().map(|&(_, u, v)| u.min(v)).fold(0, i32::min);
+        let lo = each.clone().map(|&(_, u, v)| u.min(v)).fold(-1, i32::min);
         let hi = each.map(|&(_, u, v)| u.max(v)).fold(0, i32::max);
         (lo, hi.max(2 * self.diff_powers as i32))
     }
@@ -565,7 +566,8 @@ impl KernelFit {
     /// the term's count zero).
     fn coefficients(&self, term: usize, hats: [(usize, f64); 4]) -> [f64; MAX_NB] {
         let mut c = [0.0; MAX_NB];
-        for (node, hw) in hats {
+        // (A node of weight 0 adds nothing.)
+        for (node, hw) in hats.into_iter().filter(|h| h.1 != 0.0) {
             for (v, &k) in c.iter_mut().zip(&self.coef[term][node]) {
                 *v += hw * k;
             }

@@ -37,8 +37,6 @@ enum Factor {
     U,
     W1,
     W0,
-    /// R (the R_i + R_j term).
-    R,
 }
 
 impl Factor {
@@ -50,7 +48,6 @@ impl Factor {
             Factor::U => c.q / c.s,
             Factor::W1 => c.q,
             Factor::W0 => 1.0,
-            Factor::R => c.r,
         }
     }
 }
@@ -100,20 +97,9 @@ fn power_term(
 }
 
 /// The fields a product reads: a factor weighted by every power (|s|/s_p)^e of the
-/// bases' exponents lo ..= hi (index e − lo), or by none (index 0 alone).
-#[derive(Clone, Copy, PartialEq)]
-enum Fields {
-    Powers(Factor),
-    Plain(Factor),
-}
-
-impl Fields {
-    fn each(self, (lo, hi): (i32, i32)) -> Vec<(Factor, Option<i32>)> {
-        match self {
-            Fields::Powers(f) => (lo..=hi).map(|e| (f, Some(e))).collect(),
-            Fields::Plain(f) => vec![(f, None)],
-        }
-    }
+/// bases' exponents lo ..= hi (index e − lo).
+fn powers(f: Factor, (lo, hi): (i32, i32)) -> Vec<(Factor, Option<i32>)> {
+    (lo..=hi).map(|e| (f, Some(e))).collect()
 }
 
 /// The bound waves of a set of components through the fitted kernels, by transforms.
@@ -274,15 +260,17 @@ impl TransformBound {
         // every kx row.
         const TILE: usize = 8;
         let mut t = self.ones.take_any(w * py);
-        t.par_chunks_mut(w * TILE).enumerate().for_each(|(c, rows)| {
-            let y0 = c * TILE;
-            for r in 0..w {
-                let from = &data[r * py + y0..][..rows.len() / w];
-                for (jj, &v) in from.iter().enumerate() {
-                    rows[jj * w + r] = v;
+        t.par_chunks_mut(w * TILE)
+            .enumerate()
+            .for_each(|(c, rows)| {
+                let y0 = c * TILE;
+                for r in 0..w {
+                    let from = &data[r * py + y0..][..rows.len() / w];
+                    for (jj, &v) in from.iter().enumerate() {
+                        rows[jj * w + r] = v;
+                    }
                 }
-            }
-        });
+            });
         self.ones.give(data);
         t
     }
@@ -296,8 +284,8 @@ impl TransformBound {
     fn each_cell(
         &self,
         b: &[C64],
-        fs: Fields,
-        gs: Fields,
+        fs: Factor,
+        gs: Factor,
         acc: &mut Acc,
         add: impl Fn(&mut [&mut [C64]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
@@ -305,7 +293,7 @@ impl TransformBound {
         let px = self.plan.px;
         let kx = self.reach.0.k;
         let exps = self.fit.bases.exponents();
-        let (f_list, g_list) = (fs.each(exps), gs.each(exps));
+        let (f_list, g_list) = (powers(fs, exps), powers(gs, exps));
         let f_one: Vec<Vec<C64>> = f_list
             .iter()
             .map(|&(f, e)| self.stage_one(b, f, e))
@@ -338,7 +326,11 @@ impl TransformBound {
         let w = (2 * kx + 1) as usize;
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.
-        let rows_of = |ones: &[Vec<C64>], j0: usize, nj: usize, rows: &mut Vec<C64>, scratch: &mut Vec<C64>| {
+        let rows_of = |ones: &[Vec<C64>],
+                       j0: usize,
+                       nj: usize,
+                       rows: &mut Vec<C64>,
+                       scratch: &mut Vec<C64>| {
             rows.resize(ones.len() * nj * px, zero);
             scratch.resize(inv_x.get_inplace_scratch_len(), zero);
             for (l, one) in ones.iter().enumerate() {
@@ -460,50 +452,40 @@ impl TransformBound {
             .collect();
         // The separable part and a group for each function of the larger basis.
         let groups = 1 + bases.len(0).max(bases.len(1));
-        // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g). The
-        // separable part B + R_i + R_j (its R terms here, its B terms with the factors'
-        // fields below).
+        // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
         let mut acc: Acc = (0..groups).map(|_| pool.take(px * py)).collect();
-        self.each_cell(
-            &b,
-            Fields::Plain(Factor::W0),
-            Fields::Plain(Factor::R),
-            &mut acc,
-            |c, o, r| {
-                for ((c, o), r) in c[0].iter_mut().zip(o[0]).zip(r[0]) {
-                    *c += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
-                }
-            },
-        );
-        // Group l: the sum term's basis pair l (re) and the difference term's power m = l
-        // (im), of the B terms (multiplied by 2T c) and, at finite depth, of the S·A terms
-        // (by c, in `sa`).
+        // Group 0: the separable part B + R_i + R_j. Group l: the sum term's basis function
+        // l (re) and the difference term's power m = l (im), of the B terms (multiplied by
+        // 2T c) and, at finite depth, of the S·A terms (by c, in `sa`).
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            self.each_cell(
-                &b,
-                Fields::Powers(f),
-                Fields::Powers(f),
-                &mut acc,
-                |c, p, _| {
-                    for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
-                        *c += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+            self.each_cell(&b, f, f, &mut acc, |c, p, _| {
+                if f == Factor::V {
+                    // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
+                    // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
+                    let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
+                    for ((c, r), o) in rows {
+                        *c += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
                     }
-                    for (l, f) in bases.sum.iter().enumerate() {
-                        for &(w, u, v) in &f.monomials {
-                            let k = sign * w;
-                            for ((c, a), b) in c[1 + l].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                                c.re += k * (a * b).re;
-                            }
+                }
+                // The separable part's B.
+                for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
+                    *c += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                }
+                for (l, f) in bases.sum.iter().enumerate() {
+                    for &(w, u, v) in &f.monomials {
+                        let k = sign * w;
+                        for ((c, a), b) in c[1 + l].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
+                            c.re += k * (a * b).re;
                         }
                     }
-                    let mut sum = Vec::new();
-                    for (m, t) in terms.iter().enumerate() {
-                        let p = &p[at(0)..];
-                        power_term(c[1 + m], p, p, t, m, 1.0, &mut sum);
-                    }
-                },
-            );
+                }
+                let mut sum = Vec::new();
+                for (m, t) in terms.iter().enumerate() {
+                    let p = &p[at(0)..];
+                    power_term(c[1 + m], p, p, t, m, 1.0, &mut sum);
+                }
+            });
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
@@ -515,8 +497,7 @@ impl TransformBound {
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
-                let (fs, gs) = (Fields::Powers(f), Fields::Powers(g));
-                self.each_cell(&b, fs, gs, &mut sa_acc, |c, pf, pg| {
+                self.each_cell(&b, f, g, &mut sa_acc, |c, pf, pg| {
                     for (l, f) in bases.sum.iter().enumerate() {
                         for &(w, u, v) in &f.monomials {
                             let (u, v) = (at(u), at(v));
