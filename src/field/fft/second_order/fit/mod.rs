@@ -363,7 +363,7 @@ pub struct Bases {
 }
 
 impl Bases {
-    /// Deep water: the products of [`DEEP_EXPONENTS`], powers m ≤ 3; finite depth: the
+    /// Deep water: the products of the exponents −1, 0, 1, powers m ≤ 3; finite depth: the
     /// Neumann series of order 3, powers m ≤ 4.
     pub fn for_depth(depth: Option<f64>) -> Self {
         match depth {
