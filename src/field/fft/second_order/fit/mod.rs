@@ -94,6 +94,11 @@ fn product_basis() -> Vec<SumTerm> {
     v
 }
 
+/// The binomial coefficient C(n, k) (exact in f64 for the small n of the bases).
+pub fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
+}
+
 /// The sum-term basis of finite depth: the terms of the Neumann series of
 /// G = 1/(2 s_i s_j + P − T), P = R_i + R_j = s_i² + s_j²,
 ///
@@ -106,7 +111,6 @@ fn product_basis() -> Vec<SumTerm> {
 /// equal waves), where products of plain powers of s cannot follow G; the series in
 /// (T − P)/(2 s_i s_j) (−0.53 there at 0.1 λp) can.
 fn neumann_basis(order: usize) -> Vec<SumTerm> {
-    let binom = |n: usize, k: usize| (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64);
     let mut v = Vec::new();
     for m in 0..=order {
         for a in 0..=m {
@@ -114,7 +118,7 @@ fn neumann_basis(order: usize) -> Vec<SumTerm> {
             let monomials = (0..=a)
                 .map(|b| {
                     let b_i = b as i32;
-                    (binom(a, b), 2 * b_i - m_i - 1, 2 * (a_i - b_i) - m_i - 1)
+                    (binomial(a, b), 2 * b_i - m_i - 1, 2 * (a_i - b_i) - m_i - 1)
                 })
                 .collect();
             v.push(SumTerm {
@@ -523,7 +527,7 @@ impl KernelFit {
             s_ref,
             nodes,
             coef,
-            bases: bases.clone(),
+            bases,
             na,
             rel_rms_error: 0.0,
             depth,

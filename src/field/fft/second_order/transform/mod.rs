@@ -18,7 +18,7 @@ use rustfft::num_complex::Complex;
 
 use grid::{Plan, Pool, Reach};
 
-use super::fit::{Box2, KernelFit, MAX_NB, Region, resonance_t};
+use super::fit::{Box2, KernelFit, MAX_NB, Region, binomial, resonance_t};
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -55,11 +55,9 @@ impl Factor {
 /// δ^{2m} = (x_i − x_j)^{2m} = Σ_a w_a x_i^a x_j^{2m−a}: the terms (a, w_a).
 fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
     let n = 2 * m;
-    let mut binom = 1.0;
     (0..=n).map(move |a| {
-        let w = if a % 2 == 0 { binom } else { -binom };
-        binom = binom * (n - a) as f64 / (a + 1) as f64;
-        (a, w)
+        let c = binomial(n, a);
+        (a, if a % 2 == 0 { c } else { -c })
     })
 }
 
@@ -96,12 +94,6 @@ fn power_term(
     }
 }
 
-/// The fields a product reads: a factor weighted by every power (|s|/s_p)^e of the
-/// bases' exponents lo ..= hi (index e − lo).
-fn powers(f: Factor, (lo, hi): (i32, i32)) -> Vec<(Factor, Option<i32>)> {
-    (lo..=hi).map(|e| (f, Some(e))).collect()
-}
-
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
     comps: Vec<Component>,
@@ -136,6 +128,11 @@ impl TransformBound {
         depth: Option<f64>,
         fit: KernelFit,
     ) -> Self {
+        let (lo, hi) = fit.bases.exponents();
+        assert!(
+            (hi - lo + 1) as usize <= POWERS && fit.bases.len(0).max(fit.bases.len(1)) <= MAX_NB,
+            "the fit's bases exceed the arrays of a row's fields or a cell's groups"
+        );
         let reach = reach_of(&comps, nx, ny);
         let setdown = comps
             .iter()
@@ -292,20 +289,13 @@ impl TransformBound {
         const ROWS: usize = 8;
         let px = self.plan.px;
         let kx = self.reach.0.k;
-        let exps = self.fit.bases.exponents();
-        let (f_list, g_list) = (powers(fs, exps), powers(gs, exps));
-        let f_one: Vec<Vec<C64>> = f_list
-            .iter()
-            .map(|&(f, e)| self.stage_one(b, f, e))
-            .collect();
-        let g_one: Vec<Vec<C64>> = if gs == fs {
-            Vec::new()
-        } else {
-            g_list
-                .iter()
-                .map(|&(f, e)| self.stage_one(b, f, e))
-                .collect()
-        };
+        // A factor's fields: weighted by every power (|s|/s_p)^e of the bases' exponents
+        // lo ..= hi (index e − lo).
+        let (lo, hi) = self.fit.bases.exponents();
+        let fields =
+            |f| -> Vec<Vec<C64>> { (lo..=hi).map(|e| self.stage_one(b, f, Some(e))).collect() };
+        let f_one = fields(fs);
+        let g_one = if gs == fs { Vec::new() } else { fields(gs) };
         let g_src = if gs == fs { &f_one } else { &g_one };
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
@@ -322,7 +312,7 @@ impl TransformBound {
         }
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
-        let gap = (kx + 1) as usize..(px as i64 - kx).max(kx + 1) as usize;
+        let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
         let w = (2 * kx + 1) as usize;
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.
