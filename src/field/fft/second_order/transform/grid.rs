@@ -4,9 +4,11 @@
 use std::sync::Arc;
 
 use rayon::prelude::*;
-use rustfft::{Fft, FftPlanner};
+use rustfft::num_complex::Complex;
+use rustfft::num_traits::Zero;
+use rustfft::{Fft, FftNum, FftPlanner};
 
-use super::super::{C64, resolved_span};
+use super::super::resolved_span;
 
 /// The smallest even length ≥ n with no prime factor above 5 (a fast transform).
 fn smooth_even(n: usize) -> usize {
@@ -65,38 +67,43 @@ impl Reach {
 
 /// Padded arrays given back for reuse (fresh large allocations each cost their page
 /// faults).
-#[derive(Default)]
-pub(super) struct Pool(std::sync::Mutex<Vec<Vec<C64>>>);
+pub(super) struct Pool<T>(std::sync::Mutex<Vec<Vec<Complex<T>>>>);
 
-impl Pool {
+impl<T> Default for Pool<T> {
+    fn default() -> Self {
+        Self(std::sync::Mutex::new(Vec::new()))
+    }
+}
+
+impl<T: FftNum> Pool<T> {
     /// An array of `len` zeros.
-    pub(super) fn take(&self, len: usize) -> Vec<C64> {
+    pub(super) fn take(&self, len: usize) -> Vec<Complex<T>> {
         let mut v = self.take_any(len);
-        v.fill(C64::new(0.0, 0.0));
+        v.fill(Complex::zero());
         v
     }
 
     /// An array of `len` whose values the caller overwrites (a reused one keeps its old
     /// values).
-    pub(super) fn take_any(&self, len: usize) -> Vec<C64> {
+    pub(super) fn take_any(&self, len: usize) -> Vec<Complex<T>> {
         let reused = self
             .0
             .lock()
             .expect("no panics while holding the lock")
             .pop();
         let mut v = reused.unwrap_or_default();
-        v.resize(len, C64::new(0.0, 0.0));
+        v.resize(len, Complex::zero());
         v
     }
 
-    pub(super) fn give(&self, v: Vec<C64>) {
+    pub(super) fn give(&self, v: Vec<Complex<T>>) {
         self.0
             .lock()
             .expect("no panics while holding the lock")
             .push(v);
     }
 
-    pub(super) fn give_all(&self, vs: impl IntoIterator<Item = Vec<C64>>) {
+    pub(super) fn give_all(&self, vs: impl IntoIterator<Item = Vec<Complex<T>>>) {
         for v in vs {
             self.give(v);
         }
@@ -112,16 +119,16 @@ impl Pool {
 }
 
 /// 2D transforms of a px × py grid (rows of py).
-pub(super) struct Plan {
+pub(super) struct Plan<T> {
     pub(super) px: usize,
     pub(super) py: usize,
-    pub(super) inv_x: Arc<dyn Fft<f64>>,
-    pub(super) inv_y: Arc<dyn Fft<f64>>,
-    fwd_x: Arc<dyn Fft<f64>>,
-    fwd_y: Arc<dyn Fft<f64>>,
+    pub(super) inv_x: Arc<dyn Fft<T>>,
+    pub(super) inv_y: Arc<dyn Fft<T>>,
+    fwd_x: Arc<dyn Fft<T>>,
+    fwd_y: Arc<dyn Fft<T>>,
 }
 
-impl Plan {
+impl<T: FftNum> Plan<T> {
     pub(super) fn new(px: usize, py: usize) -> Self {
         let mut p = FftPlanner::new();
         Self {
@@ -138,13 +145,13 @@ impl Plan {
     /// of `a` that `wanted` names transformed by `fa` (the others left as they are):
     /// `data` (a rows of b) becomes b rows of a.
     fn two_d(
-        data: &mut Vec<C64>,
+        data: &mut Vec<Complex<T>>,
         (a, b): (usize, usize),
-        (fa, fb): (&dyn Fft<f64>, &dyn Fft<f64>),
+        (fa, fb): (&dyn Fft<T>, &dyn Fft<T>),
         wanted: &(dyn Fn(usize) -> bool + Sync),
-        pool: &Pool,
+        pool: &Pool<T>,
     ) {
-        let zero = C64::new(0.0, 0.0);
+        let zero = Complex::zero();
         data.par_chunks_mut(b).for_each(|row| {
             if row.iter().any(|v| *v != zero) {
                 fb.process(row);
@@ -176,13 +183,13 @@ impl Plan {
     }
 
     /// Spectrum (px rows of py, kx by row) → field (py rows of px, y by row).
-    pub(super) fn inverse(&self, data: &mut Vec<C64>, pool: &Pool) {
+    pub(super) fn inverse(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
         let (fa, fb) = (&*self.inv_x, &*self.inv_y);
         Self::two_d(data, (self.px, self.py), (fa, fb), &|_| true, pool);
     }
 
     /// Field (py rows of px) → spectrum (px rows of py).
-    pub(super) fn forward(&self, data: &mut Vec<C64>, pool: &Pool) {
+    pub(super) fn forward(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
         self.forward_rows(data, &|_| true, pool);
     }
 
@@ -190,9 +197,9 @@ impl Plan {
     /// (the other rows hold partial sums).
     pub(super) fn forward_rows(
         &self,
-        data: &mut Vec<C64>,
+        data: &mut Vec<Complex<T>>,
         wanted: &(dyn Fn(usize) -> bool + Sync),
-        pool: &Pool,
+        pool: &Pool<T>,
     ) {
         let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
         Self::two_d(data, (self.py, self.px), (fa, fb), wanted, pool);

@@ -14,6 +14,7 @@
 //! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
 
 use rayon::prelude::*;
+use rustfft::FftNum;
 use rustfft::num_complex::Complex;
 
 use grid::{Plan, Pool, Reach};
@@ -67,14 +68,60 @@ const POWERS: usize = 13;
 
 /// The accumulators of every padded cell (py rows of px), one array an accumulator (the
 /// separable part, then each group), each then transformed in place.
-type Acc = Vec<Vec<C64>>;
+type Acc<T> = Vec<Vec<Complex<T>>>;
+
+/// The precision of the accumulators and their forward transforms: double at finite
+/// depth, where the S·A terms cancel to within single precision's rounding (and the
+/// difference powers' expansion of δ^{2m} amplifies it at small |q|), single in deep
+/// water, where the S·A terms are absent (the products are formed in double precision
+/// either way; tested against the pair sum of the same kernels).
+trait Real: FftNum + std::ops::AddAssign {
+    fn of(x: f64) -> Self;
+    fn wide(self) -> f64;
+    /// The forward transforms and the arrays of this precision.
+    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>);
+}
+
+impl Real for f64 {
+    #[inline]
+    fn of(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn wide(self) -> f64 {
+        self
+    }
+    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>) {
+        (&tb.plan, &tb.pool)
+    }
+}
+
+impl Real for f32 {
+    #[inline]
+    fn of(x: f64) -> Self {
+        x as f32
+    }
+    #[inline]
+    fn wide(self) -> f64 {
+        f64::from(self)
+    }
+    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>) {
+        (&tb.plan32, &tb.pool32)
+    }
+}
+
+/// A value of `T` in double precision.
+#[inline]
+fn wide<T: Real>(v: Complex<T>) -> C64 {
+    C64::new(v.re.wide(), v.im.wide())
+}
 
 /// `out` += Σ_a w_a Re(f_a conj g_{2m−a}) at each cell of a row, over the terms of
 /// [`expansion`] (f, g the rows of the fields of exponents 0, 1, …), summed in the terms'
 /// order, then scaled (`sum` a row of scratch).
 #[inline]
-fn power_term(
-    out: &mut [C64],
+fn power_term<T: Real>(
+    out: &mut [Complex<T>],
     f: &[&[C64]],
     g: &[&[C64]],
     terms: &[(usize, f64)],
@@ -90,7 +137,7 @@ fn power_term(
         }
     }
     for (o, d) in out.iter_mut().zip(sum.iter()) {
-        o.im += scale * d;
+        o.im += T::of(scale * d);
     }
 }
 
@@ -105,11 +152,14 @@ pub struct TransformBound {
     /// The exact set-down Σ 4ρ_i² K⁻_ii that replaces the difference terms at q = 0 (it
     /// does not depend on the time).
     setdown: f64,
-    plan: Plan,
+    plan: Plan<f64>,
+    /// The forward transforms of single-precision accumulators (deep water).
+    plan32: Plan<f32>,
     /// The padded arrays given back within a frame, reused by its later steps.
-    pool: Pool,
+    pool: Pool<f64>,
+    pool32: Pool<f32>,
     /// The transforms' first stages (kx rows of the components).
-    ones: Pool,
+    ones: Pool<f64>,
     fit: KernelFit,
 }
 
@@ -146,7 +196,9 @@ impl TransformBound {
             ny,
             reach,
             plan: Plan::new(reach.0.len, reach.1.len),
+            plan32: Plan::new(reach.0.len, reach.1.len),
             pool: Pool::default(),
+            pool32: Pool::default(),
             ones: Pool::default(),
             fit,
         }
@@ -221,7 +273,7 @@ impl TransformBound {
     }
 
     /// The field Σ_i f(k_i)·w(k_i)·b_i e^{ik_i·x} on the padded grid (py rows of px).
-    fn field(&self, b: &[C64], f: Factor, exponent: Option<i32>, pool: &Pool) -> Vec<C64> {
+    fn field(&self, b: &[C64], f: Factor, exponent: Option<i32>, pool: &Pool<f64>) -> Vec<C64> {
         let (px, py) = (self.plan.px, self.plan.py);
         let mut data = pool.take(px * py);
         for (c, &bi) in self.comps.iter().zip(b) {
@@ -278,13 +330,13 @@ impl TransformBound {
     /// ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just before
     /// their products, so that no whole field is held. The same values as the whole
     /// fields' transforms.
-    fn each_cell(
+    fn each_cell<T: Real>(
         &self,
         b: &[C64],
         fs: Factor,
         gs: Factor,
-        acc: &mut Acc,
-        add: impl Fn(&mut [&mut [C64]], &[&[C64]], &[&[C64]]) + Sync,
+        acc: &mut Acc<T>,
+        add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
         const ROWS: usize = 8;
         let px = self.plan.px;
@@ -301,7 +353,7 @@ impl TransformBound {
         let inv_x = &*self.plan.inv_x;
         let chunk = px * ROWS;
         // Each task's rows of every accumulator.
-        let mut tasks: Vec<Vec<&mut [C64]>> = Vec::new();
+        let mut tasks: Vec<Vec<&mut [Complex<T>]>> = Vec::new();
         for a in acc.iter_mut() {
             for (c, rows) in a.chunks_mut(chunk).enumerate() {
                 if tasks.len() <= c {
@@ -355,7 +407,7 @@ impl TransformBound {
                         std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
                     let gv: [&[C64]; POWERS] =
                         std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
-                    let mut rows: Vec<&mut [C64]> = out
+                    let mut rows: Vec<&mut [Complex<T>]> = out
                         .iter_mut()
                         .map(|o| &mut o[jj * px..(jj + 1) * px])
                         .collect();
@@ -413,8 +465,6 @@ impl TransformBound {
 
     /// Adds the bound waves at `setup`'s time to `half`.
     pub fn add_to(&self, setup: &SpectrumSetup, half: &mut HalfSpectrum) {
-        let (nx, ny) = (self.nx, self.ny);
-        let (px, py) = (self.plan.px, self.plan.py);
         let b: Vec<C64> = self
             .comps
             .iter()
@@ -424,13 +474,27 @@ impl TransformBound {
                 C64::new(2.0 * c.rho * co, 2.0 * c.rho * s)
             })
             .collect();
+        match self.depth {
+            Some(_) => self.add_as::<f64>(setup, &b, half),
+            None => self.add_as::<f32>(setup, &b, half),
+        }
+        // Nothing held between frames (the linear field's own arrays come next).
+        self.pool.clear();
+        self.pool32.clear();
+        self.ones.clear();
+    }
+
+    /// [`Self::add_to`] with the amplitudes `b` at the time, accumulators of precision `T`.
+    fn add_as<T: Real>(&self, setup: &SpectrumSetup, b: &[C64], half: &mut HalfSpectrum) {
+        let (nx, ny) = (self.nx, self.ny);
+        let (px, py) = (self.plan.px, self.plan.py);
         let finite = self.depth.is_some();
-        let pool = &self.pool;
+        let (plan, pool) = T::forward(self);
         // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
         let ox = self.reach.0.o;
         let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
-        let transform = |mut acc: Vec<C64>| {
-            self.plan.forward_rows(&mut acc, &kept_row, pool);
+        let transform = |mut acc: Vec<Complex<T>>| {
+            plan.forward_rows(&mut acc, &kept_row, pool);
             acc
         };
         // The fields of exponent e are at index e − lo.
@@ -443,30 +507,32 @@ impl TransformBound {
         // The separable part and a group for each function of the larger basis.
         let groups = 1 + bases.len(0).max(bases.len(1));
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
-        let mut acc: Acc = (0..groups).map(|_| pool.take(px * py)).collect();
+        let mut acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
         // Group 0: the separable part B + R_i + R_j. Group l: the sum term's basis function
         // l (re) and the difference term's power m = l (im), of the B terms (multiplied by
         // 2T c) and, at finite depth, of the S·A terms (by c, in `sa`).
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            self.each_cell(&b, f, f, &mut acc, |c, p, _| {
+            self.each_cell(b, f, f, &mut acc, |c, p, _| {
                 if f == Factor::V {
                     // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
                     // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
                     let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
                     for ((c, r), o) in rows {
-                        *c += C64::new(2.0 * (r * o).re, 2.0 * (r * o.conj()).re);
+                        c.re += T::of(2.0 * (r * o).re);
+                        c.im += T::of(2.0 * (r * o.conj()).re);
                     }
                 }
                 // The separable part's B.
                 for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
-                    *c += C64::new(sign * (p0 * p0).re, (p0 * p0.conj()).re);
+                    c.re += T::of(sign * (p0 * p0).re);
+                    c.im += T::of((p0 * p0.conj()).re);
                 }
                 for (l, f) in bases.sum.iter().enumerate() {
                     for &(w, u, v) in &f.monomials {
                         let k = sign * w;
                         for ((c, a), b) in c[1 + l].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                            c.re += k * (a * b).re;
+                            c.re += T::of(k * (a * b).re);
                         }
                     }
                 }
@@ -480,20 +546,20 @@ impl TransformBound {
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
         // Group 0 is the separable part, groups 1.. the weighted ones.
-        let transformed: Vec<Vec<C64>> = acc.into_iter().map(transform).collect();
-        let mut sa: Vec<Vec<C64>> = Vec::new();
+        let transformed: Acc<T> = acc.into_iter().map(transform).collect();
+        let mut sa: Acc<T> = Vec::new();
         if finite {
-            let mut sa_acc: Acc = (0..groups).map(|_| pool.take(px * py)).collect();
+            let mut sa_acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
-                self.each_cell(&b, f, g, &mut sa_acc, |c, pf, pg| {
+                self.each_cell(b, f, g, &mut sa_acc, |c, pf, pg| {
                     for (l, f) in bases.sum.iter().enumerate() {
                         for &(w, u, v) in &f.monomials {
                             let (u, v) = (at(u), at(v));
                             let rows = pf[u].iter().zip(pg[v]).zip(pf[v].iter().zip(pg[u]));
                             for (c, ((fu, gv), (fv, gu))) in c[1 + l].iter_mut().zip(rows) {
-                                c.re += w * ((fu * gv).re + (fv * gu).re);
+                                c.re += T::of(w * ((fu * gv).re + (fv * gu).re));
                             }
                         }
                     }
@@ -525,8 +591,8 @@ impl TransformBound {
                     let there = (-n).rem_euclid(px as i64) as usize * py
                         + (-m).rem_euclid(py as i64) as usize;
                     // The sum (re) and difference (im) parts of a packed transform.
-                    let unpack = |f: &[C64]| {
-                        let (a, b) = (f[here], f[there].conj());
+                    let unpack = |f: &[Complex<T>]| {
+                        let (a, b) = (wide(f[here]), wide(f[there]).conj());
                         (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                     };
                     let (qx, qy) = setup.wavevector(n, m);
@@ -559,10 +625,6 @@ impl TransformBound {
                     *v += Complex::new(h.re as f32, h.im as f32);
                 }
             });
-        // Nothing held between frames (the linear field's own arrays come next).
-        for p in [&self.pool, &self.ones] {
-            p.clear();
-        }
     }
 }
 
