@@ -160,6 +160,10 @@ pub struct TransformBound {
     pool32: Pool<f32>,
     /// The transforms' first stages (kx rows of the components).
     ones: Pool<f64>,
+    /// The components by kx row (row n + k_x): their indices, row r's from
+    /// `rows[r]` to `rows[r + 1]`.
+    by_row: Vec<u32>,
+    rows: Vec<usize>,
     fit: KernelFit,
 }
 
@@ -188,6 +192,16 @@ impl TransformBound {
             .iter()
             .map(|c| 4.0 * c.rho * c.rho * self_kernels(c, depth).1)
             .sum();
+        let w = (2 * reach.0.k + 1) as usize;
+        let mut by_row: Vec<u32> = (0..comps.len() as u32).collect();
+        by_row.sort_by_key(|&i| comps[i as usize].n);
+        let mut rows = vec![0usize; w + 1];
+        for c in &comps {
+            rows[(c.n + reach.0.k) as usize + 1] += 1;
+        }
+        for r in 0..w {
+            rows[r + 1] += rows[r];
+        }
         Self {
             setdown,
             comps,
@@ -199,6 +213,8 @@ impl TransformBound {
             plan32: Plan::new(reach.0.len, reach.1.len),
             pool: Pool::default(),
             pool32: Pool::default(),
+            by_row,
+            rows,
             ones: Pool::default(),
             fit,
         }
@@ -287,40 +303,46 @@ impl TransformBound {
 
     /// The first stage of a field's inverse transform: Σ over the components of
     /// f(k_i)·w(k_i)·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each row
-    /// transformed along ky (rows of zeros stay zero), then transposed: py rows of
-    /// 2k_x + 1, so that the second stage reads a few rows of y in one run.
+    /// transformed along ky (rows of zeros stay zero), and stored transposed: py rows of
+    /// 2k_x + 1, so that the second stage reads a few rows of y in one run. The kx rows
+    /// are transformed a batch at a time and written into their columns, so no
+    /// untransposed copy of the whole field is held.
     fn stage_one(&self, b: &[C64], f: Factor, exponent: Option<i32>) -> Vec<C64> {
-        let py = self.plan.py;
-        let kx = self.reach.0.k;
-        let w = (2 * kx + 1) as usize;
-        let mut data = self.ones.take(w * py);
-        for (c, &bi) in self.comps.iter().zip(b) {
-            let row = (c.n + kx) as usize;
-            let col = c.m.rem_euclid(py as i64) as usize;
-            data[row * py + col] += self.weighted(c, bi, f, exponent);
-        }
-        let zero = C64::new(0.0, 0.0);
-        data.par_chunks_mut(py).for_each(|row| {
-            if row.iter().any(|v| *v != zero) {
-                self.plan.inv_y.process(row);
-            }
-        });
-        // Blocked: each task writes TILE rows of y, reading TILE consecutive values of
-        // every kx row.
+        // kx rows a batch, rows of y a task of the transposition.
+        const BATCH: usize = 32;
         const TILE: usize = 8;
+        let py = self.plan.py;
+        let w = self.rows.len() - 1;
+        let zero = C64::new(0.0, 0.0);
         let mut t = self.ones.take_any(w * py);
-        t.par_chunks_mut(w * TILE)
-            .enumerate()
-            .for_each(|(c, rows)| {
-                let y0 = c * TILE;
-                for r in 0..w {
-                    let from = &data[r * py + y0..][..rows.len() / w];
-                    for (jj, &v) in from.iter().enumerate() {
-                        rows[jj * w + r] = v;
-                    }
+        let mut batch = vec![zero; BATCH.min(w) * py];
+        for r0 in (0..w).step_by(BATCH) {
+            let nr = BATCH.min(w - r0);
+            let rows = &mut batch[..nr * py];
+            rows.par_chunks_mut(py).enumerate().for_each(|(i, row)| {
+                row.fill(zero);
+                let r = r0 + i;
+                for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
+                    let c = &self.comps[ci as usize];
+                    let col = c.m.rem_euclid(py as i64) as usize;
+                    row[col] += self.weighted(c, b[ci as usize], f, exponent);
+                }
+                if row.iter().any(|v| *v != zero) {
+                    self.plan.inv_y.process(row);
                 }
             });
-        self.ones.give(data);
+            let rows = &batch[..nr * py];
+            t.par_chunks_mut(w * TILE)
+                .enumerate()
+                .for_each(|(c, out)| {
+                    let y0 = c * TILE;
+                    for (jj, line) in out.chunks_exact_mut(w).enumerate() {
+                        for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
+                            *v = rows[i * py + y0 + jj];
+                        }
+                    }
+                });
+        }
         t
     }
 
@@ -338,7 +360,7 @@ impl TransformBound {
         acc: &mut Acc<T>,
         add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
-        const ROWS: usize = 8;
+        const ROWS: usize = 4;
         let px = self.plan.px;
         let kx = self.reach.0.k;
         // A factor's fields: weighted by every power (|s|/s_p)^e of the bases' exponents
