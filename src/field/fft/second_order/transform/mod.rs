@@ -110,15 +110,64 @@ impl Real for f32 {
     }
 }
 
+/// The real (`im` false) or imaginary part of `c`.
+#[inline]
+fn part<T>(c: &mut Complex<T>, im: bool) -> &mut T {
+    if im { &mut c.im } else { &mut c.re }
+}
+
+/// A real product field: the sum term's basis function l or the difference power m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Part {
+    Sum(usize),
+    Diff(usize),
+}
+
+/// Where the weighted real product fields go, two to a complex accumulator (its real and
+/// imaginary parts, told apart after the forward transform by Hermitian symmetry): sum
+/// function l beside difference power l while both bases have one, the rest of the
+/// longer basis two by two.
+struct Layout {
+    /// The parts of each weighted accumulator.
+    slots: Vec<[Option<Part>; 2]>,
+    /// Accumulator and part (imaginary?) of each sum function, of each difference power.
+    sum: Vec<(usize, bool)>,
+    diff: Vec<(usize, bool)>,
+}
+
+impl Layout {
+    fn new(n_sum: usize, n_diff: usize) -> Self {
+        let mut slots: Vec<[Option<Part>; 2]> = (0..n_sum.min(n_diff))
+            .map(|l| [Some(Part::Sum(l)), Some(Part::Diff(l))])
+            .collect();
+        let rest: Vec<Part> = (n_diff..n_sum)
+            .map(Part::Sum)
+            .chain((n_sum..n_diff).map(Part::Diff))
+            .collect();
+        slots.extend(rest.chunks(2).map(|p| [Some(p[0]), p.get(1).copied()]));
+        let (mut sum, mut diff) = (vec![(0, false); n_sum], vec![(0, false); n_diff]);
+        for (g, slot) in slots.iter().enumerate() {
+            for (k, p) in slot.iter().enumerate() {
+                match p {
+                    Some(Part::Sum(l)) => sum[*l] = (g, k == 1),
+                    Some(Part::Diff(m)) => diff[*m] = (g, k == 1),
+                    None => {}
+                }
+            }
+        }
+        Self { slots, sum, diff }
+    }
+}
+
 /// A value of `T` in double precision.
 #[inline]
 fn wide<T: Real>(v: Complex<T>) -> C64 {
     C64::new(v.re.wide(), v.im.wide())
 }
 
-/// `out` += Σ_a w_a Re(f_a conj g_{2m−a}) at each cell of a row, over the terms of
-/// [`expansion`] (f, g the rows of the fields of exponents 0, 1, …), summed in the terms'
-/// order, then scaled (`sum` a row of scratch).
+/// `out`'s real (`im` false) or imaginary part += Σ_a w_a Re(f_a conj g_{2m−a}) at each
+/// cell of a row, over the terms of [`expansion`] (f, g the rows of the fields of
+/// exponents 0, 1, …), summed in the terms' order, then scaled (`sum` a row of scratch).
 #[inline]
 fn power_term<T: Real>(
     out: &mut [Complex<T>],
@@ -126,7 +175,7 @@ fn power_term<T: Real>(
     g: &[&[C64]],
     terms: &[(usize, f64)],
     m: usize,
-    scale: f64,
+    (scale, im): (f64, bool),
     sum: &mut Vec<f64>,
 ) {
     sum.clear();
@@ -137,7 +186,7 @@ fn power_term<T: Real>(
         }
     }
     for (o, d) in out.iter_mut().zip(sum.iter()) {
-        o.im += T::of(scale * d);
+        *part(o, im) += T::of(scale * d);
     }
 }
 
@@ -332,16 +381,14 @@ impl TransformBound {
                 }
             });
             let rows = &batch[..nr * py];
-            t.par_chunks_mut(w * TILE)
-                .enumerate()
-                .for_each(|(c, out)| {
-                    let y0 = c * TILE;
-                    for (jj, line) in out.chunks_exact_mut(w).enumerate() {
-                        for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
-                            *v = rows[i * py + y0 + jj];
-                        }
+            t.par_chunks_mut(w * TILE).enumerate().for_each(|(c, out)| {
+                let y0 = c * TILE;
+                for (jj, line) in out.chunks_exact_mut(w).enumerate() {
+                    for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
+                        *v = rows[i * py + y0 + jj];
                     }
-                });
+                }
+            });
         }
         t
     }
@@ -526,13 +573,13 @@ impl TransformBound {
         let terms: Vec<Vec<(usize, f64)>> = (0..=bases.diff_powers)
             .map(|m| expansion(m).collect())
             .collect();
-        // The separable part and a group for each function of the larger basis.
-        let groups = 1 + bases.len(0).max(bases.len(1));
+        let layout = Layout::new(bases.len(0), bases.len(1));
+        let groups = layout.slots.len();
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
-        let mut acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
-        // Group 0: the separable part B + R_i + R_j. Group l: the sum term's basis function
-        // l (re) and the difference term's power m = l (im), of the B terms (multiplied by
-        // 2T c) and, at finite depth, of the S·A terms (by c, in `sa`).
+        // Accumulator 0: the separable part B + R_i + R_j (sum re, difference im); 1 + g:
+        // the weighted parts of the B terms (multiplied by 2T c) in `layout`'s slot g, and
+        // at finite depth those of the S·A terms (by c, in `sa`, slot g at g).
+        let mut acc: Acc<T> = (0..=groups).map(|_| pool.take(px * py)).collect();
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
             self.each_cell(b, f, f, &mut acc, |c, p, _| {
@@ -550,24 +597,23 @@ impl TransformBound {
                     c.re += T::of(sign * (p0 * p0).re);
                     c.im += T::of((p0 * p0.conj()).re);
                 }
-                for (l, f) in bases.sum.iter().enumerate() {
+                for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
                     for &(w, u, v) in &f.monomials {
                         let k = sign * w;
-                        for ((c, a), b) in c[1 + l].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                            c.re += T::of(k * (a * b).re);
+                        for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
+                            *part(c, im) += T::of(k * (a * b).re);
                         }
                     }
                 }
                 let mut sum = Vec::new();
-                for (m, t) in terms.iter().enumerate() {
+                for (m, (t, &(g, im))) in terms.iter().zip(&layout.diff).enumerate() {
                     let p = &p[at(0)..];
-                    power_term(c[1 + m], p, p, t, m, 1.0, &mut sum);
+                    power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
                 }
             });
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
-        // Group 0 is the separable part, groups 1.. the weighted ones.
         let transformed: Acc<T> = acc.into_iter().map(transform).collect();
         let mut sa: Acc<T> = Vec::new();
         if finite {
@@ -576,23 +622,23 @@ impl TransformBound {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
                 self.each_cell(b, f, g, &mut sa_acc, |c, pf, pg| {
-                    for (l, f) in bases.sum.iter().enumerate() {
+                    for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
                         for &(w, u, v) in &f.monomials {
                             let (u, v) = (at(u), at(v));
                             let rows = pf[u].iter().zip(pg[v]).zip(pf[v].iter().zip(pg[u]));
-                            for (c, ((fu, gv), (fv, gu))) in c[1 + l].iter_mut().zip(rows) {
-                                c.re += T::of(w * ((fu * gv).re + (fv * gu).re));
+                            for (c, ((fu, gv), (fv, gu))) in c[g].iter_mut().zip(rows) {
+                                *part(c, im) += T::of(w * ((fu * gv).re + (fv * gu).re));
                             }
                         }
                     }
                     let mut sum = Vec::new();
-                    for (m, t) in terms.iter().enumerate() {
-                        let (f, g) = (&pf[at(0)..], &pg[at(0)..]);
-                        power_term(c[1 + m], f, g, t, m, 2.0 * sign, &mut sum);
+                    for (m, (t, &(g, im))) in terms.iter().zip(&layout.diff).enumerate() {
+                        let (f, g_) = (&pf[at(0)..], &pg[at(0)..]);
+                        power_term(c[g], f, g_, t, m, (2.0 * sign, im), &mut sum);
                     }
                 });
             }
-            sa = sa_acc.into_iter().skip(1).map(transform).collect();
+            sa = sa_acc.into_iter().map(transform).collect();
         }
         let (depth, setdown) = (self.depth, self.setdown);
         let norm = 0.25 / (px * py) as f64;
@@ -624,21 +670,22 @@ impl TransformBound {
                     // (at q = 0 the set-down replaces the difference terms).
                     let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
                     let zero_diff = n == 0 && m == 0;
-                    let mut h = C64::new(0.0, 0.0);
-                    for (g, f) in transformed.iter().enumerate() {
+                    // A slot's part times its output coefficient (`k` 2T for the B terms,
+                    // 1 for the S·A terms).
+                    let weighted = |v: C64, p: Option<Part>, k: f64| match p {
+                        Some(Part::Sum(l)) => v * (k * cp[l]),
+                        Some(Part::Diff(m)) if !zero_diff => v * (k * cm[m]),
+                        _ => C64::new(0.0, 0.0),
+                    };
+                    let (s, d) = unpack(&transformed[0]);
+                    let mut h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
+                    for (f, slot) in transformed[1..].iter().zip(&layout.slots) {
                         let (s, d) = unpack(f);
-                        let d = if zero_diff { C64::new(0.0, 0.0) } else { d };
-                        if g == 0 {
-                            h += s + d;
-                        } else {
-                            let l = g - 1;
-                            h += s * (2.0 * t * cp[l]) + d * (2.0 * t * cm[l]);
-                        }
+                        h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
                     }
-                    for (l, f) in sa.iter().enumerate() {
+                    for (f, slot) in sa.iter().zip(&layout.slots) {
                         let (s, d) = unpack(f);
-                        let d = if zero_diff { C64::new(0.0, 0.0) } else { d };
-                        h += s * cp[l] + d * cm[l];
+                        h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
                     }
                     let mut h = h * norm;
                     if zero_diff {
