@@ -40,8 +40,36 @@ enum Factor {
     W0,
 }
 
+/// What a frame reads of a component (56 bytes instead of a [`Component`]'s 88: the
+/// components are held for the sequence).
+struct Wave {
+    n: i32,
+    m: i32,
+    kx: f64,
+    ky: f64,
+    s: f64,
+    q: f64,
+    rho: f64,
+    phi: f64,
+}
+
+impl From<&Component> for Wave {
+    fn from(c: &Component) -> Self {
+        Self {
+            n: i32::try_from(c.n).expect("a grid index"),
+            m: i32::try_from(c.m).expect("a grid index"),
+            kx: c.kx,
+            ky: c.ky,
+            s: c.s,
+            q: c.q,
+            rho: c.rho,
+            phi: c.phi,
+        }
+    }
+}
+
 impl Factor {
-    fn of(self, c: &Component) -> f64 {
+    fn of(self, c: &Wave) -> f64 {
         match self {
             Factor::X => c.kx / c.s,
             Factor::Y => c.ky / c.s,
@@ -192,7 +220,7 @@ fn power_term<T: Real>(
 
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
-    comps: Vec<Component>,
+    comps: Vec<Wave>,
     depth: Option<f64>,
     nx: usize,
     ny: usize,
@@ -242,11 +270,12 @@ impl TransformBound {
             .map(|c| 4.0 * c.rho * c.rho * self_kernels(c, depth).1)
             .sum();
         let w = (2 * reach.0.k + 1) as usize;
+        let comps: Vec<Wave> = comps.iter().map(Wave::from).collect();
         let mut by_row: Vec<u32> = (0..comps.len() as u32).collect();
         by_row.sort_by_key(|&i| comps[i as usize].n);
         let mut rows = vec![0usize; w + 1];
         for c in &comps {
-            rows[(c.n + reach.0.k) as usize + 1] += 1;
+            rows[(i64::from(c.n) + reach.0.k) as usize + 1] += 1;
         }
         for r in 0..w {
             rows[r + 1] += rows[r];
@@ -332,7 +361,7 @@ impl TransformBound {
     /// f(k_i)·w(k_i)·b_i of component `c`: its amplitude `bi` weighted by a factor and
     /// by w = (|s|/s_p)^e (1 without an exponent).
     #[inline]
-    fn weighted(&self, c: &Component, bi: C64, f: Factor, exponent: Option<i32>) -> C64 {
+    fn weighted(&self, c: &Wave, bi: C64, f: Factor, exponent: Option<i32>) -> C64 {
         let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
         bi * (f.of(c) * w)
     }
@@ -342,8 +371,8 @@ impl TransformBound {
         let (px, py) = (self.plan.px, self.plan.py);
         let mut data = pool.take(px * py);
         for (c, &bi) in self.comps.iter().zip(b) {
-            let row = c.n.rem_euclid(px as i64) as usize;
-            let col = c.m.rem_euclid(py as i64) as usize;
+            let row = i64::from(c.n).rem_euclid(px as i64) as usize;
+            let col = i64::from(c.m).rem_euclid(py as i64) as usize;
             data[row * py + col] += self.weighted(c, bi, f, exponent);
         }
         self.plan.inverse(&mut data, pool);
@@ -373,7 +402,7 @@ impl TransformBound {
                 let r = r0 + i;
                 for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
                     let c = &self.comps[ci as usize];
-                    let col = c.m.rem_euclid(py as i64) as usize;
+                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
                     row[col] += self.weighted(c, b[ci as usize], f, exponent);
                 }
                 if row.iter().any(|v| *v != zero) {
@@ -525,7 +554,10 @@ impl TransformBound {
         let doubled_off = self
             .comps
             .iter()
-            .filter(|c| !(on_grid(2 * c.n, self.nx) && on_grid(2 * c.m, self.ny)))
+            .filter(|c| {
+                let (n, m) = (i64::from(c.n), i64::from(c.m));
+                !(on_grid(2 * n, self.nx) && on_grid(2 * m, self.ny))
+            })
             .count() as u64;
         let sums = (sums / norm).round() as u64;
         let diffs = (diffs / norm).round() as u64;
