@@ -453,8 +453,8 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
     );
     for row in [
         "linear sea (PM 15 m/s, 2048 m)",
-        "second order, pair sum q = 0.99",
-        "second order, fitted q = 0.99",
+        "second order, pair sum (0.99 in limit)",
+        "second order, fitted (all in limit)",
         "48 frames, linear",
         "48 frames, second order (auto)",
         "48 frames, linear, loop 20 s",

@@ -176,10 +176,23 @@ fn the_fitted_method_against_the_pair_sum_of_every_component() {
 #[ignore = "a measurement, not a check: \
             cargo test --release --lib transform_timing -- --ignored --nocapture"]
 fn transform_timing() {
-    // Wall times of the linear half spectrum with its inverse transform, of the
-    // preparation (ranking, fit) and of one frame of the bound waves by transforms, PM
-    // 15 m/s over 2048 m, at q = 0.99 and q = 1.
-    for (n, q) in [(1024usize, 0.99), (4096, 0.99), (1024, 1.0)] {
+    // Wall times, PM 15 m/s over 2048 m: the linear frame (half spectrum and its inverse
+    // transform, the transform planned once), the preparation of the bound waves (the
+    // convergence limit, the components within it, the fit) and the bound waves of one
+    // frame by transforms (medians of 5), every wave within the limit (the default) and
+    // every wave of the grid (`nonlinear_cutoff = inf`).
+    let median = |f: &mut dyn FnMut()| {
+        let mut t: Vec<f64> = (0..5)
+            .map(|_| {
+                let t0 = std::time::Instant::now();
+                f();
+                t0.elapsed().as_secs_f64()
+            })
+            .collect();
+        t.sort_by(f64::total_cmp);
+        t[2]
+    };
+    for (n, c) in [(1024usize, Some(2.0)), (4096, Some(2.0)), (1024, None)] {
         let size = format!("size={n}");
         let sets = [
             "method=fft",
@@ -193,27 +206,22 @@ fn transform_timing() {
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         let setup = setup_at(spec, model.as_ref(), dispersion, 3, 0.0);
-        let t0 = std::time::Instant::now();
-        let half = crate::field::fft::synthesize_spectrum(&setup);
-        let _ = InverseFft2::new(spec.nx, spec.ny).process(half);
-        let linear = t0.elapsed().as_secs_f64();
+        let inverse = InverseFft2::new(spec.nx, spec.ny);
+        let linear = median(&mut || {
+            let half = crate::field::fft::synthesize_spectrum(&setup);
+            let _ = inverse.process(half);
+        });
         let t1 = std::time::Instant::now();
-        let so = SecondOrder::new(&setup, q);
-        let rank = t1.elapsed().as_secs_f64();
-        let region = TransformBound::region(&setup, so.components(), q);
-        let kf = KernelFit::new(model.as_ref(), dispersion, region, setup.dk());
-        let comps = so.components().len();
-        let tb = TransformBound::new(so.components().to_vec(), spec.nx, spec.ny, None, kf);
+        let cut = c.map(|c| Cutoff::of(&setup, c));
+        let (tb, info) = TransformBound::for_setup(&setup, 1.0, cut);
         let prepare = t1.elapsed().as_secs_f64();
-        let t2 = std::time::Instant::now();
         let mut half = crate::field::fft::synthesize_spectrum(&setup);
-        tb.add_to(&setup, &mut half);
-        let _ = InverseFft2::new(spec.nx, spec.ny).process(half);
-        let frame = t2.elapsed().as_secs_f64();
+        let frame = median(&mut || tb.add_to(&setup, &mut half));
         eprintln!(
-            "{n}² q = {q}: {comps} components, padded {}×{}; linear {linear:.4} s; ranking \
-             {rank:.4} s, with the fit {prepare:.4} s; second-order frame {frame:.4} s \
-             ({:.1}× the linear)",
+            "{n}² cutoff {c:?}: {} components, padded {}×{}; linear frame {linear:.4} s; \
+             preparation {prepare:.4} s; bound waves of a frame {frame:.4} s ({:.1}× the \
+             linear frame)",
+            info.components,
             tb.plan.px,
             tb.plan.py,
             frame / linear
