@@ -7,7 +7,7 @@
 //! padded to more than 2k + min(2k, the grid's edge) per axis so that no sum or
 //! difference of two of them wraps onto a kept output (3/2 of the grid when they fill
 //! it). `spectrum.nonlinear_method = "fitted"`, and the default `auto`'s choice in deep
-//! water (see docs/methods.md for its error and cost).
+//! water and down to about 0.1 λp of depth (see docs/methods.md for its error and cost).
 //!
 //! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over the components (b_i = a_i e^{i(φ_i − ω_i t)})
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
@@ -235,7 +235,7 @@ pub struct TransformBound {
     /// The padded arrays given back within a frame, reused by its later steps.
     pool: Pool<f64>,
     pool32: Pool<f32>,
-    /// The transforms' first stages (kx rows of the components).
+    /// The transforms' first stages (py rows of the components' 2k_x + 1 kx columns).
     ones: Pool<f64>,
     /// The components by kx row (row n + k_x): their indices, row r's from
     /// `rows[r]` to `rows[r + 1]`.
