@@ -205,39 +205,16 @@ where
 {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
     let lines = nx / 2 + 1;
-    let (dkx, dky) = setup.dk();
-    let ky: Vec<f64> = (0..ny)
-        .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
-        .collect();
+    let ky = line_ky(setup);
     let mut data = vec![Complex32::new(0.0, 0.0); lines * ny];
     let peak = data
         .par_chunks_mut(ny)
         .enumerate()
         .map_init(
-            || LineBuffers {
-                ky: ky.clone(),
-                pa: vec![0.0; ny],
-                pb: vec![0.0; ny],
-                ra: vec![0.0; ny],
-                rb: vec![0.0; ny],
-                pha: vec![0.0; ny],
-                phb: vec![0.0; ny],
-            },
+            || LineBuffers::new(&ky),
             |buf, (n, line)| {
-                let n = n as i64;
-                let kx = setup.wavevector(n, 0).0;
-                let q = LineQuery {
-                    kx,
-                    ky: &buf.ky,
-                    dkx,
-                    dky,
-                };
-                let out = PairOut {
-                    a: &mut buf.pa,
-                    b: &mut buf.pb,
-                };
-                setup.spectrum.amplitude_variance_pair_line(&q, out);
-                kernel(n, kx, buf, line)
+                let kx = line_variances(setup, n as i64, buf);
+                kernel(n as i64, kx, buf, line)
             },
         )
         .reduce(|| 0.0, f64::max);
@@ -247,6 +224,69 @@ where
         data,
         h0max_m: peak.sqrt(),
     }
+}
+
+/// What `visit(n, buffers)` makes of each kx line n < `lines` (n ≥ 0, at most the half
+/// spectrum's nx/2 + 1 lines), in line order, with the line's E|h̃0(±k)|² in the buffers
+/// as [`build_lines`] gives them: the lines' passes that need no half spectrum.
+pub(crate) fn visit_lines<T, V>(setup: &SpectrumSetup, lines: usize, visit: V) -> Vec<T>
+where
+    T: Send,
+    V: Fn(i64, &mut LineBuffers) -> T + Sync,
+{
+    let ky = line_ky(setup);
+    let lines = lines.min(setup.spec.nx / 2 + 1);
+    (0..lines)
+        .into_par_iter()
+        .map_init(
+            || LineBuffers::new(&ky),
+            |buf, n| {
+                line_variances(setup, n as i64, buf);
+                visit(n as i64, buf)
+            },
+        )
+        .collect()
+}
+
+/// The ky of each index of a line (FFT order).
+fn line_ky(setup: &SpectrumSetup) -> Vec<f64> {
+    let ny = setup.spec.ny;
+    (0..ny)
+        .map(|idx| setup.wavevector(0, signed_index(idx, ny)).1)
+        .collect()
+}
+
+impl LineBuffers {
+    fn new(ky: &[f64]) -> Self {
+        let ny = ky.len();
+        Self {
+            ky: ky.to_vec(),
+            pa: vec![0.0; ny],
+            pb: vec![0.0; ny],
+            ra: vec![0.0; ny],
+            rb: vec![0.0; ny],
+            pha: vec![0.0; ny],
+            phb: vec![0.0; ny],
+        }
+    }
+}
+
+/// E|h̃0(±k)|² of kx line n into `buf.pa`, `buf.pb` (one call over the whole line); its kx.
+fn line_variances(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) -> f64 {
+    let (dkx, dky) = setup.dk();
+    let kx = setup.wavevector(n, 0).0;
+    let q = LineQuery {
+        kx,
+        ky: &buf.ky,
+        dkx,
+        dky,
+    };
+    let out = PairOut {
+        a: &mut buf.pa,
+        b: &mut buf.pb,
+    };
+    setup.spectrum.amplitude_variance_pair_line(&q, out);
+    kx
 }
 
 /// Builds h̃(k, t) for every resolved wavevector with n ≥ 0 (Tessendorf). Values equal

@@ -38,13 +38,11 @@
 //! the linear sea (rounded to the loop's multiples when looping, so sums and differences
 //! stay multiples).
 
-use std::sync::Mutex;
-
 use rayon::prelude::*;
 use rustfft::num_complex::{Complex, Complex32};
 use serde::Serialize;
 
-use super::{HalfSpectrum, SpectrumSetup, build_lines, draw_line, resolved_ranges};
+use super::{HalfSpectrum, P_FLOOR_M2, SpectrumSetup, draw_line, resolved_ranges, visit_lines};
 use crate::fastmath;
 use crate::grid::signed_index;
 use crate::simd::Isa;
@@ -239,43 +237,59 @@ impl Draw {
     }
 }
 
-/// Every resolved draw with energy of `setup`, line by line (kx index ≥ 0, with its
-/// mirror line): what `line` makes of each line's draws, in line order.
+/// Every resolved draw with energy of `setup` on the kx lines |n| < `lines`, line by line
+/// (kx index ≥ 0, with its mirror line): what `line` makes of each line's draws, in line
+/// order. Without `draws` only E|h̃0|² is filled in (ρ and φ 0: the expected spectrum,
+/// its cells above [`P_FLOOR_M2`], those whose draws have energy).
 fn lines_of<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
+    (lines, draws): (usize, bool),
     line: &(dyn Fn(&[Draw]) -> T + Sync),
 ) -> Vec<T> {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
-    let per_line: Mutex<Vec<Option<T>>> = Mutex::new((0..=nx / 2).map(|_| None).collect());
-    build_lines(setup, |n, _kx, buf, _line| {
-        draw_line(setup, isa, n, buf);
-        let mut draws = Vec::new();
+    visit_lines(setup, lines, |n, buf| {
+        if draws {
+            draw_line(setup, isa, n, buf);
+        }
+        let mut out = Vec::new();
         for r in resolved_ranges(n, nx, ny) {
             for idx in r {
                 let m = signed_index(idx, ny);
                 let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
-                    if rho > 0.0 {
-                        draws.push(Draw { n, m, p, rho, phi });
+                    if if draws { rho > 0.0 } else { p > P_FLOOR_M2 } {
+                        out.push(Draw { n, m, p, rho, phi });
                     }
                 };
-                push(n, m, buf.pa[idx], buf.ra[idx], buf.pha[idx]);
+                let (ra, pha, rb, phb) = if draws {
+                    (buf.ra[idx], buf.pha[idx], buf.rb[idx], buf.phb[idx])
+                } else {
+                    (0.0, 0.0, 0.0, 0.0)
+                };
+                push(n, m, buf.pa[idx], ra, pha);
                 // On the kx = 0 line the a draws of ±m already cover both.
                 if n > 0 {
-                    push(-n, -m, buf.pb[idx], buf.rb[idx], buf.phb[idx]);
+                    push(-n, -m, buf.pb[idx], rb, phb);
                 }
             }
         }
-        let out = line(&draws);
-        per_line.lock().expect("no panics while holding the lock")[n as usize] = Some(out);
-        0.0
-    });
-    per_line
-        .into_inner()
-        .expect("no panics while holding the lock")
-        .into_iter()
-        .map(|l| l.expect("every line visited"))
-        .collect()
+        line(&out)
+    })
+}
+
+/// The kx lines (n ≥ 0) that can hold a wave within `cutoff` (None: every line): those
+/// below its wavenumber k_up, with a line of margin.
+fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> usize {
+    let every = setup.spec.nx / 2 + 1;
+    let Some(c) = cutoff else { return every };
+    let k_up = setup.dispersion.wavenumber(c.omega_up);
+    let dkx = setup.dk().0;
+    let n = (k_up / dkx).floor();
+    if n.is_finite() && n + 2.0 < every as f64 {
+        n as usize + 2
+    } else {
+        every
+    }
 }
 
 /// Every resolved draw with energy of `setup`, line by line, as `keep` maps it (None:
@@ -283,9 +297,10 @@ fn lines_of<T: Send>(
 fn each_line<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
+    lines: usize,
     keep: &(dyn Fn(Draw) -> Option<T> + Sync),
 ) -> Vec<Vec<T>> {
-    lines_of(setup, isa, &|draws| {
+    lines_of(setup, isa, (lines, true), &|draws| {
         draws.iter().filter_map(|&d| keep(d)).collect()
     })
 }
@@ -301,9 +316,10 @@ fn octave(p: f64) -> usize {
 fn octaves(
     setup: &SpectrumSetup,
     isa: Isa,
+    lines: usize,
     admit: &(dyn Fn(&Draw) -> bool + Sync),
 ) -> (Vec<(f64, usize)>, f64) {
-    let lines = lines_of(setup, isa, &|draws| {
+    let lines = lines_of(setup, isa, (lines, true), &|draws| {
         let mut dense = vec![(0.0f64, 0usize); 0x800];
         let mut total = 0.0;
         for d in draws.iter().filter(|d| admit(d)) {
@@ -390,7 +406,8 @@ impl Cutoff {
     pub fn of(setup: &SpectrumSetup, c: f64) -> Self {
         let isa = Isa::detect();
         let depth = depth_of(setup.dispersion);
-        let lines = lines_of(setup, isa, &|draws| {
+        let every = setup.spec.nx / 2 + 1;
+        let lines = lines_of(setup, isa, (every, false), &|draws| {
             let (mut m0, mut m2) = (0.0, 0.0);
             for d in draws {
                 m0 += 2.0 * d.p;
@@ -455,7 +472,8 @@ fn r_of_k(k: f64, depth: Option<f64>) -> f64 {
 /// R of the grid wave (n, m).
 fn r_of(setup: &SpectrumSetup, depth: Option<f64>, n: i64, m: i64) -> f64 {
     let (kx, ky) = setup.wavevector(n, m);
-    r_of_k(kx.hypot(ky), depth)
+    // (Not `hypot`: no overflow to guard against, at a fraction of its cost.)
+    r_of_k((kx * kx + ky * ky).sqrt(), depth)
 }
 
 impl SecondOrder {
@@ -472,6 +490,7 @@ impl SecondOrder {
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let depth = depth_of(setup.dispersion);
         let admit = |d: &Draw| cutoff.is_none_or(|c| c.admits(r_of(setup, depth, d.n, d.m)));
+        let lines = lines_within(setup, cutoff);
         let component = |d: &Draw| {
             let (kx, ky) = setup.wavevector(d.n, d.m);
             let mut c = Component::new(kx, ky, d.rho, d.phi, depth);
@@ -486,7 +505,9 @@ impl SecondOrder {
         };
         if fraction >= 1.0 {
             // Every draw within the limits: nothing to rank, one pass.
-            let all = flat(each_line(setup, isa, &|d| admit(&d).then(|| component(&d))));
+            let all = flat(each_line(setup, isa, lines, &|d| {
+                admit(&d).then(|| component(&d))
+            }));
             let info = SecondOrderInfo {
                 components_available: all.len(),
                 variance_fraction_kept: if all.is_empty() { 0.0 } else { 1.0 },
@@ -502,7 +523,7 @@ impl SecondOrder {
         // Only the candidates are ranked: the draws of the octaves that reach the fraction
         // of the total, and one octave below them (a margin far beyond the rounding of the
         // octaves' sums); all of them if the margin fell short.
-        let (by_octave, total) = octaves(setup, isa, &admit);
+        let (by_octave, total) = octaves(setup, isa, lines, &admit);
         let available = by_octave.iter().map(|b| b.1).sum();
         let mut floor = 0;
         let mut acc = 0.0;
@@ -514,7 +535,7 @@ impl SecondOrder {
             }
         }
         let select = |floor: usize| {
-            let mut keys: Vec<Key> = flat(each_line(setup, isa, &|d| {
+            let mut keys: Vec<Key> = flat(each_line(setup, isa, lines, &|d| {
                 (octave(d.p) >= floor && admit(&d)).then(|| d.key())
             }));
             keys.par_sort_unstable_by(rank);
@@ -536,7 +557,7 @@ impl SecondOrder {
         // The kept components: those ranked no later than the last kept key.
         let all: Vec<Component> = match last {
             None => Vec::new(),
-            Some(last) => flat(each_line(setup, isa, &|d| {
+            Some(last) => flat(each_line(setup, isa, lines, &|d| {
                 (rank(&d.key(), &last).is_le() && admit(&d)).then(|| component(&d))
             })),
         };

@@ -507,9 +507,11 @@ impl KernelFit {
                         n += 1;
                     }
                 }
+                // The lower triangle only (the indices ascend, so idx[y] ≤ idx[x]): all
+                // that the Cholesky solve reads.
                 for x in 0..n {
                     atb[idx[x]] += val[x] * sp.ns;
-                    for y in 0..n {
+                    for y in 0..=x {
                         ata[idx[x] * dim + idx[y]] += val[x] * val[y];
                     }
                 }
@@ -628,7 +630,7 @@ impl KernelFit {
 }
 
 /// Solves (AᵀA + λI)x = Aᵀb by Cholesky, λ a small fraction of the mean diagonal (rows
-/// without data get x = 0).
+/// without data get x = 0); reads AᵀA's lower triangle and diagonal only.
 fn solve_ridge(ata: &mut [f64], atb: &mut [f64], dim: usize) -> Vec<f64> {
     let mean_diag = (0..dim).map(|i| ata[i * dim + i]).sum::<f64>() / dim as f64;
     let lambda = 1e-9 * mean_diag.max(1e-300);

@@ -25,7 +25,7 @@ use super::{
     self_kernels,
 };
 use crate::fastmath;
-use crate::grid::signed_index;
+use crate::grid::{GridSpec, signed_index};
 
 /// The single-wave factors of the products.
 #[derive(Clone, Copy, PartialEq)]
@@ -242,6 +242,67 @@ pub struct TransformBound {
     by_row: Vec<u32>,
     rows: Vec<usize>,
     fit: KernelFit,
+    /// What multiplies the product fields at each output kept (lines 0 ..= o_x, columns
+    /// −o_y ..= o_y): [`KernelFit::output_coefficients`]' sum and difference coefficients
+    /// and T, the same at every time.
+    outputs: Outputs,
+}
+
+/// The output coefficients of the kept outputs, `stride` values a cell: the sum basis's,
+/// the difference powers', T.
+struct Outputs {
+    values: Vec<f64>,
+    n_sum: usize,
+    n_diff: usize,
+    stride: usize,
+    columns: usize,
+}
+
+impl Outputs {
+    fn new(fit: &KernelFit, spec: GridSpec, depth: Option<f64>, (ox, oy): (i64, i64)) -> Self {
+        let (n_sum, n_diff) = (fit.bases.len(0), fit.bases.len(1));
+        let stride = n_sum + n_diff + 1;
+        let columns = (2 * oy + 1).max(0) as usize;
+        let lines = (ox + 1).max(0) as usize;
+        let tau = std::f64::consts::TAU;
+        let mut values = vec![0.0; lines * columns * stride];
+        values
+            .par_chunks_mut(columns * stride)
+            .enumerate()
+            .for_each(|(n, line)| {
+                for (j, cell) in line.chunks_exact_mut(stride).enumerate() {
+                    let m = j as i64 - oy;
+                    let qx = tau * n as f64 / spec.extent_x_m;
+                    let qy = tau * m as f64 / spec.extent_y_m;
+                    // (Not `hypot`: no overflow to guard against here, at a fraction of
+                    // its cost.)
+                    let qn = (qx * qx + qy * qy).sqrt();
+                    let t = resonance_t(qn, depth);
+                    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+                    cell[..n_sum].copy_from_slice(&cp[..n_sum]);
+                    cell[n_sum..n_sum + n_diff].copy_from_slice(&cm[..n_diff]);
+                    cell[stride - 1] = t;
+                }
+            });
+        Self {
+            values,
+            n_sum,
+            n_diff,
+            stride,
+            columns,
+        }
+    }
+
+    /// The sum coefficients, the difference coefficients and T of output (n, m).
+    #[inline]
+    fn at(&self, n: usize, j: usize) -> (&[f64], &[f64], f64) {
+        let c = &self.values[(n * self.columns + j) * self.stride..][..self.stride];
+        (
+            &c[..self.n_sum],
+            &c[self.n_sum..self.n_sum + self.n_diff],
+            c[self.stride - 1],
+        )
+    }
 }
 
 /// The reach of `comps` on a grid of nx × ny.
@@ -252,13 +313,8 @@ fn reach_of(comps: &[Component], nx: usize, ny: usize) -> (Reach, Reach) {
 }
 
 impl TransformBound {
-    pub fn new(
-        comps: Vec<Component>,
-        nx: usize,
-        ny: usize,
-        depth: Option<f64>,
-        fit: KernelFit,
-    ) -> Self {
+    pub fn new(comps: Vec<Component>, spec: GridSpec, depth: Option<f64>, fit: KernelFit) -> Self {
+        let (nx, ny) = (spec.nx, spec.ny);
         let (lo, hi) = fit.bases.exponents();
         assert!(
             (hi - lo + 1) as usize <= POWERS && fit.bases.len(0).max(fit.bases.len(1)) <= MAX_NB,
@@ -281,6 +337,7 @@ impl TransformBound {
             rows[r + 1] += rows[r];
         }
         Self {
+            outputs: Outputs::new(&fit, spec, depth, (reach.0.o, reach.1.o)),
             setdown,
             comps,
             depth,
@@ -347,10 +404,9 @@ impl TransformBound {
         all: SecondOrder,
         fit: KernelFit,
     ) -> (Self, SecondOrderInfo) {
-        let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let mut info = all.info.clone();
         let depth = all.depth;
-        let me = Self::new(all.comps, nx, ny, depth, fit);
+        let me = Self::new(all.comps, setup.spec, depth, fit);
         let (sums, diffs) = me.dropped_pairs();
         info.sum_pairs_dropped = sums;
         info.difference_pairs_dropped = diffs;
@@ -576,8 +632,8 @@ impl TransformBound {
             })
             .collect();
         match self.depth {
-            Some(_) => self.add_as::<f64>(setup, &b, half),
-            None => self.add_as::<f32>(setup, &b, half),
+            Some(_) => self.add_as::<f64>(&b, half),
+            None => self.add_as::<f32>(&b, half),
         }
         // Nothing held between frames (the linear field's own arrays come next).
         self.pool.clear();
@@ -586,7 +642,7 @@ impl TransformBound {
     }
 
     /// [`Self::add_to`] with the amplitudes `b` at the time, accumulators of precision `T`.
-    fn add_as<T: Real>(&self, setup: &SpectrumSetup, b: &[C64], half: &mut HalfSpectrum) {
+    fn add_as<T: Real>(&self, b: &[C64], half: &mut HalfSpectrum) {
         let (nx, ny) = (self.nx, self.ny);
         let (px, py) = (self.plan.px, self.plan.py);
         let finite = self.depth.is_some();
@@ -672,9 +728,9 @@ impl TransformBound {
             }
             sa = sa_acc.into_iter().map(transform).collect();
         }
-        let (depth, setdown) = (self.depth, self.setdown);
+        let setdown = self.setdown;
         let norm = 0.25 / (px * py) as f64;
-        let fit = &self.fit;
+        let outputs = &self.outputs;
         // The outputs the waves reach: lines n ≤ o_x, columns |m| ≤ o_y (on the grid).
         let oy = self.reach.1.o;
         half.data
@@ -695,14 +751,7 @@ impl TransformBound {
                         let (a, b) = (wide(f[here]), wide(f[there]).conj());
                         (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                     };
-                    let (qx, qy) = setup.wavevector(n, m);
-                    // (Not `hypot`: no overflow to guard against here, at a fraction of its
-                    // cost.)
-                    let qn = (qx * qx + qy * qy).sqrt();
-                    let t = resonance_t(qn, depth);
-                    // The difference powers: c_m (s_p² / T)^m / T on δ^{2m} in units of s_p
-                    // (at q = 0 the set-down replaces the difference terms).
-                    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+                    let (cp, cm, t) = outputs.at(n as usize, (m + oy) as usize);
                     let zero_diff = n == 0 && m == 0;
                     // A slot's part times its output coefficient (`k` 2T for the B terms,
                     // 1 for the S·A terms).

@@ -66,7 +66,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
                 |a, b| kf.kernel(a, b, -1.0, depth).0,
             );
             let want = field_of(spec, |h| add_plane(&pairs.0, h));
-            let tb = TransformBound::new(so.components().to_vec(), spec.nx, spec.ny, depth, kf);
+            let tb = TransformBound::new(so.components().to_vec(), spec, depth, kf);
             let got = field_of(spec, |h| tb.add_to(&setup, h));
             let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
             assert!(scale > 0.0);
