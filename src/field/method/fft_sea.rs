@@ -117,7 +117,11 @@ impl HeightMethod for FftSea {
                 None => Bound::Pairs(Box::new(so)),
             };
             let fitted = |so: SecondOrder, fit| {
-                let (tb, info) = TransformBound::with_fit(&setup, so, fit);
+                let (mut tb, info) = TransformBound::with_fit(&setup, so, fit);
+                if keep_draws {
+                    // A sequence: its output coefficients once for every frame.
+                    tb.keep_outputs();
+                }
                 Bound::Fitted(Box::new(tb), info)
             };
             match s.nonlinear_method {

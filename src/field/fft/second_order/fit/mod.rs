@@ -45,6 +45,8 @@
 //! η2's rms in deep water and at depths of 0.2–0.05 peak wavelengths (0.2–0.3 % at 0.1 λp);
 //! the default `auto` takes the fitted method where the estimate is within its margin.
 
+use rayon::prelude::*;
+
 use crate::rng::mix64;
 use crate::spectrum::{Dispersion, Spectrum};
 
@@ -52,6 +54,9 @@ use super::Component;
 
 /// The most functions of a term's basis (the Neumann sum basis of finite depth).
 pub const MAX_NB: usize = 10;
+/// The most exponents e of the fields (|s|/s_p)^e a basis reads (−1 ..= 6 in deep water,
+/// −4 ..= 8 at finite depth).
+pub const POWERS: usize = 13;
 /// Nodes of the coefficients in √|q|, and in the angle of q over [0, π).
 const Q_NODES: usize = 24;
 const ANGLE_NODES: usize = 1;
@@ -258,60 +263,86 @@ fn spectrum_sample(
     let k_lo = dk.0.min(dk.1);
     let k_hi = bounds.kx_max.hypot(bounds.ky_max);
     let ratio = (k_hi / k_lo).ln();
-    let mut waves = Vec::new();
-    let mut weights = Vec::new();
-    for ir in 0..SAMPLE_RADII {
-        let u0 = ir as f64 / SAMPLE_RADII as f64;
-        let u1 = (ir + 1) as f64 / SAMPLE_RADII as f64;
-        let (r0, r1) = (k_lo * (u0 * ratio).exp(), k_lo * (u1 * ratio).exp());
-        let k = 0.5 * (r0 + r1);
-        for it in 0..SAMPLE_ANGLES {
-            let th = std::f64::consts::TAU * (it as f64 + 0.5) / SAMPLE_ANGLES as f64;
-            let (kx, ky) = (k * th.cos(), k * th.sin());
-            if !bounds.contains(kx, ky) {
-                continue;
+    // A ring of radii a task (the spectrum's values are the costly part), in ring order.
+    let rings: Vec<Vec<(Component, f64)>> = (0..SAMPLE_RADII)
+        .into_par_iter()
+        .map(|ir| {
+            let u0 = ir as f64 / SAMPLE_RADII as f64;
+            let u1 = (ir + 1) as f64 / SAMPLE_RADII as f64;
+            let (r0, r1) = (k_lo * (u0 * ratio).exp(), k_lo * (u1 * ratio).exp());
+            let k = 0.5 * (r0 + r1);
+            let mut ring = Vec::new();
+            for it in 0..SAMPLE_ANGLES {
+                let th = std::f64::consts::TAU * (it as f64 + 0.5) / SAMPLE_ANGLES as f64;
+                let (kx, ky) = (k * th.cos(), k * th.sin());
+                if !bounds.contains(kx, ky) {
+                    continue;
+                }
+                let cell = spectrum.amplitude_variance(kx, ky, dk.0, dk.1);
+                if cell < region.floor {
+                    continue;
+                }
+                let density = cell / (dk.0 * dk.1);
+                let area = k * (r1 - r0) * std::f64::consts::TAU / SAMPLE_ANGLES as f64;
+                let w = density * area;
+                if w > 0.0 && w.is_finite() {
+                    ring.push((Component::new(kx, ky, 1.0, 0.0, depth), w));
+                }
             }
-            let cell = spectrum.amplitude_variance(kx, ky, dk.0, dk.1);
-            if cell < region.floor {
-                continue;
-            }
-            let density = cell / (dk.0 * dk.1);
-            let area = k * (r1 - r0) * std::f64::consts::TAU / SAMPLE_ANGLES as f64;
-            let w = density * area;
-            if w > 0.0 && w.is_finite() {
-                waves.push(Component::new(kx, ky, 1.0, 0.0, depth));
-                weights.push(w);
-            }
-        }
-    }
-    (waves, weights)
+            ring
+        })
+        .collect();
+    rings.into_iter().flatten().unzip()
 }
 
-/// Draws from a discrete distribution by its cumulative weights.
+/// Draws from a discrete distribution by its cumulative weights: the first index whose
+/// cumulative weight exceeds u·total, found from a guide table of where each of
+/// `GUIDES` equal steps of u starts (a step or two instead of a binary search).
 struct Sampler {
     cum: Vec<f64>,
+    guide: Vec<usize>,
 }
+
+/// The guide table's steps of u.
+const GUIDES: usize = 8192;
 
 impl Sampler {
     fn new(w: &[f64]) -> Self {
         let mut acc = 0.0;
-        let cum = w
+        let cum: Vec<f64> = w
             .iter()
             .map(|&x| {
                 acc += x;
                 acc
             })
             .collect();
-        Self { cum }
+        let total = cum.last().copied().unwrap_or(0.0);
+        let guide = (0..GUIDES)
+            .map(|b| {
+                let x = b as f64 / GUIDES as f64 * total;
+                cum.partition_point(|&c| c <= x)
+            })
+            .collect();
+        Self { cum, guide }
     }
 
-    /// The index of u ∈ [0, 1).
+    /// The index of u ∈ [0, 1): the first whose cumulative weight exceeds u·total (the
+    /// last index if none does).
     fn pick(&self, u: f64) -> usize {
-        let total = *self.cum.last().expect("a non-empty sample");
+        let cum = &self.cum;
+        let total = *cum.last().expect("a non-empty sample");
         let x = u * total;
-        self.cum
-            .partition_point(|&c| c <= x)
-            .min(self.cum.len() - 1)
+        let b = ((u * GUIDES as f64) as usize).min(GUIDES - 1);
+        // From the step's start: back while the one before also exceeds x (rounding of
+        // the step's bound), then on while this one does not.
+        let mut i = self.guide[b];
+        while i > 0 && cum[i - 1] > x {
+            i -= 1;
+        }
+        while i < cum.len() && cum[i] <= x {
+            i += 1;
+        }
+        i.min(cum.len() - 1)
     }
 }
 
@@ -391,6 +422,14 @@ impl Bases {
         }
     }
 
+    /// The least and largest exponent of the sum basis's monomials.
+    fn sum_exponents(&self) -> (i32, i32) {
+        let each = self.sum.iter().flat_map(|t| t.monomials.iter());
+        let lo = each.clone().map(|&(_, u, v)| u.min(v)).min().unwrap_or(0);
+        let hi = each.map(|&(_, u, v)| u.max(v)).max().unwrap_or(0);
+        (lo, hi)
+    }
+
     /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read
     /// (−1 and 1 at least: they also give the separable part's R_i + R_j).
     pub fn exponents(&self) -> (i32, i32) {
@@ -418,10 +457,20 @@ impl Bases {
         }
         let (xa, xb) = (a.s.abs() / s_ref, b.s.abs() / s_ref);
         let tt = t / (s_ref * s_ref);
+        // x^e of both waves for the exponents lo ..= hi of the monomials, each once (the
+        // same values as powi of each monomial's own).
+        let (lo, hi) = self.sum_exponents();
+        let (mut pa, mut pb) = ([0.0; POWERS], [0.0; POWERS]);
+        for e in lo..=hi {
+            let i = (e - lo) as usize;
+            (pa[i], pb[i]) = (xa.powi(e), xb.powi(e));
+        }
+        let at = |e: i32| (e - lo) as usize;
         for (o, f) in out.iter_mut().zip(&self.sum) {
             let mut v = 0.0;
             for &(w, u, e) in &f.monomials {
-                v += w * (0.5 * (xa.powi(u) * xb.powi(e) + xa.powi(e) * xb.powi(u)));
+                let (u, e) = (at(u), at(e));
+                v += w * (0.5 * (pa[u] * pb[e] + pa[e] * pb[u]));
             }
             *o = if f.t_power == 0 {
                 v

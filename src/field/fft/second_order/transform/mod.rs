@@ -19,7 +19,7 @@ use rustfft::num_complex::Complex;
 
 use grid::{Plan, Pool, Reach};
 
-use super::fit::{Box2, KernelFit, MAX_NB, Region, binomial, resonance_t};
+use super::fit::{Box2, KernelFit, MAX_NB, POWERS, Region, binomial, resonance_t};
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -89,10 +89,6 @@ fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
         (a, if a % 2 == 0 { c } else { -c })
     })
 }
-
-/// The most fields of one factor: weighted by (|s|/s_p)^e for each exponent e the bases
-/// read (−1 ..= 6 in deep water, −4 ..= 8 at finite depth).
-const POWERS: usize = 13;
 
 /// The accumulators of every padded cell (py rows of px), one array an accumulator (the
 /// separable part, then each group), each then transformed in place.
@@ -242,14 +238,35 @@ pub struct TransformBound {
     by_row: Vec<u32>,
     rows: Vec<usize>,
     fit: KernelFit,
-    /// What multiplies the product fields at each output kept (lines 0 ..= o_x, columns
-    /// −o_y ..= o_y): [`KernelFit::output_coefficients`]' sum and difference coefficients
-    /// and T, the same at every time.
-    outputs: Outputs,
+    /// What multiplies the product fields at each output kept, the same at every time:
+    /// tabulated once for a sequence of frames ([`Self::keep_outputs`]), else computed
+    /// at each output of the frame.
+    outputs: Option<Outputs>,
+    spec: GridSpec,
 }
 
-/// The output coefficients of the kept outputs, `stride` values a cell: the sum basis's,
-/// the difference powers', T.
+/// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
+/// [`KernelFit::output_coefficients`]' sum and difference coefficients, and T.
+#[inline]
+fn coefficients_at(
+    fit: &KernelFit,
+    spec: GridSpec,
+    depth: Option<f64>,
+    n: i64,
+    m: i64,
+) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
+    let tau = std::f64::consts::TAU;
+    let qx = tau * n as f64 / spec.extent_x_m;
+    let qy = tau * m as f64 / spec.extent_y_m;
+    // (Not `hypot`: no overflow to guard against here, at a fraction of its cost.)
+    let qn = (qx * qx + qy * qy).sqrt();
+    let t = resonance_t(qn, depth);
+    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+    (cp, cm, t)
+}
+
+/// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
+/// `stride` values a cell: the sum basis's, the difference powers', T.
 struct Outputs {
     values: Vec<f64>,
     n_sum: usize,
@@ -264,21 +281,13 @@ impl Outputs {
         let stride = n_sum + n_diff + 1;
         let columns = (2 * oy + 1).max(0) as usize;
         let lines = (ox + 1).max(0) as usize;
-        let tau = std::f64::consts::TAU;
         let mut values = vec![0.0; lines * columns * stride];
         values
             .par_chunks_mut(columns * stride)
             .enumerate()
             .for_each(|(n, line)| {
                 for (j, cell) in line.chunks_exact_mut(stride).enumerate() {
-                    let m = j as i64 - oy;
-                    let qx = tau * n as f64 / spec.extent_x_m;
-                    let qy = tau * m as f64 / spec.extent_y_m;
-                    // (Not `hypot`: no overflow to guard against here, at a fraction of
-                    // its cost.)
-                    let qn = (qx * qx + qy * qy).sqrt();
-                    let t = resonance_t(qn, depth);
-                    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+                    let (cp, cm, t) = coefficients_at(fit, spec, depth, n as i64, j as i64 - oy);
                     cell[..n_sum].copy_from_slice(&cp[..n_sum]);
                     cell[n_sum..n_sum + n_diff].copy_from_slice(&cm[..n_diff]);
                     cell[stride - 1] = t;
@@ -293,15 +302,14 @@ impl Outputs {
         }
     }
 
-    /// The sum coefficients, the difference coefficients and T of output (n, m).
+    /// The sum coefficients, the difference coefficients and T of output (n, −o_y + j).
     #[inline]
-    fn at(&self, n: usize, j: usize) -> (&[f64], &[f64], f64) {
+    fn at(&self, n: usize, j: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
         let c = &self.values[(n * self.columns + j) * self.stride..][..self.stride];
-        (
-            &c[..self.n_sum],
-            &c[self.n_sum..self.n_sum + self.n_diff],
-            c[self.stride - 1],
-        )
+        let (mut cp, mut cm) = ([0.0; MAX_NB], [0.0; MAX_NB]);
+        cp[..self.n_sum].copy_from_slice(&c[..self.n_sum]);
+        cm[..self.n_diff].copy_from_slice(&c[self.n_sum..self.n_sum + self.n_diff]);
+        (cp, cm, c[self.stride - 1])
     }
 }
 
@@ -337,7 +345,8 @@ impl TransformBound {
             rows[r + 1] += rows[r];
         }
         Self {
-            outputs: Outputs::new(&fit, spec, depth, (reach.0.o, reach.1.o)),
+            outputs: None,
+            spec,
             setdown,
             comps,
             depth,
@@ -353,6 +362,14 @@ impl TransformBound {
             ones: Pool::default(),
             fit,
         }
+    }
+
+    /// Tabulates the output coefficients for the frames to come (a sequence: the same at
+    /// every time, 8 bytes × (the bases' functions + 1) an output kept; the same values
+    /// as computed at each frame).
+    pub fn keep_outputs(&mut self) {
+        let o = (self.reach.0.o, self.reach.1.o);
+        self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
     }
 
     /// The region of the fit for `comps` of `setup`: their box, the box of the outputs
@@ -730,7 +747,7 @@ impl TransformBound {
         }
         let setdown = self.setdown;
         let norm = 0.25 / (px * py) as f64;
-        let outputs = &self.outputs;
+        let (outputs, depth) = (&self.outputs, self.depth);
         // The outputs the waves reach: lines n ≤ o_x, columns |m| ≤ o_y (on the grid).
         let oy = self.reach.1.o;
         half.data
@@ -751,7 +768,10 @@ impl TransformBound {
                         let (a, b) = (wide(f[here]), wide(f[there]).conj());
                         (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                     };
-                    let (cp, cm, t) = outputs.at(n as usize, (m + oy) as usize);
+                    let (cp, cm, t) = match outputs {
+                        Some(o) => o.at(n as usize, (m + oy) as usize),
+                        None => coefficients_at(&self.fit, self.spec, depth, n, m),
+                    };
                     let zero_diff = n == 0 && m == 0;
                     // A slot's part times its output coefficient (`k` 2T for the B terms,
                     // 1 for the S·A terms).
