@@ -452,47 +452,72 @@ impl TransformBound {
         data
     }
 
-    /// The first stage of a field's inverse transform: Σ over the components of
-    /// f(k_i)·w(k_i)·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each row
-    /// transformed along ky (rows of zeros stay zero), and stored transposed: py rows of
-    /// 2k_x + 1, so that the second stage reads a few rows of y in one run. The kx rows
-    /// are transformed a batch at a time and written into their columns, so no
-    /// untransposed copy of the whole field is held.
-    fn stage_one(&self, b: &[C64], f: Factor, exponent: Option<i32>) -> Vec<C64> {
+    /// The first stages of a factor's fields' inverse transforms, one field for each
+    /// exponent e of `lo ..= hi` (index e − lo): Σ over the components of
+    /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
+    /// row transformed along ky (rows of zeros stay zero), and stored transposed: py rows
+    /// of 2k_x + 1, so that the second stage reads a few rows of y in one run. The kx rows
+    /// are built, every exponent's at once (each component read once), and transformed a
+    /// batch at a time, then written into their columns, so no untransposed copy of a
+    /// whole field is held.
+    fn stage_one(&self, b: &[C64], f: Factor, (lo, hi): (i32, i32)) -> Vec<Vec<C64>> {
         // kx rows a batch, rows of y a task of the transposition.
-        const BATCH: usize = 64;
+        const BATCH: usize = 16;
         const TILE: usize = 8;
         let py = self.plan.py;
         let w = self.rows.len() - 1;
+        let ne = (hi - lo + 1).max(0) as usize;
         let zero = C64::new(0.0, 0.0);
-        let mut t = self.ones.take_any(w * py);
-        let mut batch = vec![zero; BATCH.min(w) * py];
+        let mut fields: Vec<Vec<C64>> = (0..ne).map(|_| self.ones.take_any(w * py)).collect();
+        // A batch row: the row of every exponent, one after another.
+        let mut batch = vec![zero; BATCH.min(w) * ne * py];
         for r0 in (0..w).step_by(BATCH) {
             let nr = BATCH.min(w - r0);
-            let rows = &mut batch[..nr * py];
-            rows.par_chunks_mut(py).enumerate().for_each(|(i, row)| {
-                row.fill(zero);
-                let r = r0 + i;
-                for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
-                    let c = &self.comps[ci as usize];
-                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                    row[col] += self.weighted(c, b[ci as usize], f, exponent);
+            let rows = &mut batch[..nr * ne * py];
+            rows.par_chunks_mut(ne * py)
+                .enumerate()
+                .for_each(|(i, rows)| {
+                    rows.fill(zero);
+                    let r = r0 + i;
+                    for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
+                        let c = &self.comps[ci as usize];
+                        let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                        let (bi, v) = (b[ci as usize], f.of(c));
+                        let x = c.s.abs() / self.fit.s_ref;
+                        for (l, row) in rows.chunks_exact_mut(py).enumerate() {
+                            // (The same values as `weighted`.)
+                            row[col] += bi * (v * x.powi(lo + l as i32));
+                        }
+                    }
+                    for row in rows.chunks_exact_mut(py) {
+                        if row.iter().any(|v| *v != zero) {
+                            self.plan.inv_y.process(row);
+                        }
+                    }
+                });
+            let rows = &batch[..nr * ne * py];
+            // Each task's tile of y rows of every field.
+            let mut tasks: Vec<Vec<&mut [C64]>> = Vec::new();
+            for field in fields.iter_mut() {
+                for (c, tile) in field.chunks_mut(w * TILE).enumerate() {
+                    if tasks.len() <= c {
+                        tasks.push(Vec::with_capacity(ne));
+                    }
+                    tasks[c].push(tile);
                 }
-                if row.iter().any(|v| *v != zero) {
-                    self.plan.inv_y.process(row);
-                }
-            });
-            let rows = &batch[..nr * py];
-            t.par_chunks_mut(w * TILE).enumerate().for_each(|(c, out)| {
+            }
+            tasks.into_par_iter().enumerate().for_each(|(c, tiles)| {
                 let y0 = c * TILE;
-                for (jj, line) in out.chunks_exact_mut(w).enumerate() {
-                    for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
-                        *v = rows[i * py + y0 + jj];
+                for (l, out) in tiles.into_iter().enumerate() {
+                    for (jj, line) in out.chunks_exact_mut(w).enumerate() {
+                        for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
+                            *v = rows[(i * ne + l) * py + y0 + jj];
+                        }
                     }
                 }
             });
         }
-        t
+        fields
     }
 
     /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
@@ -515,8 +540,7 @@ impl TransformBound {
         // A factor's fields: weighted by every power (|s|/s_p)^e of the bases' exponents
         // lo ..= hi (index e − lo).
         let (lo, hi) = self.fit.bases.exponents();
-        let fields =
-            |f| -> Vec<Vec<C64>> { (lo..=hi).map(|e| self.stage_one(b, f, Some(e))).collect() };
+        let fields = |f| self.stage_one(b, f, (lo, hi));
         let f_one = fields(fs);
         let g_one = if gs == fs { Vec::new() } else { fields(gs) };
         let g_src = if gs == fs { &f_one } else { &g_one };
