@@ -385,10 +385,11 @@ pub struct BenchArgs {
     #[arg(long)]
     pub sequence: bool,
     /// Also time second-order seas beside the linear one at each size (Pierson–Moskowitz
-    /// 15 m/s over 2048 m): the exact pair sum and the fitted method at q = 0.99, as
-    /// ratios to the linear field; and 48 frames of the sea, unlooped (the default method)
-    /// and looping (T = 20 s, the pair sum binned), linear and second order, with their
-    /// ratios
+    /// 15 m/s over 2048 m): the exact pair sum of the strongest waves carrying 0.99 of
+    /// the variance within the convergence limit and the fitted method of every wave
+    /// within it, as ratios to the linear field; and 48 frames of the sea (medians of
+    /// three runs), unlooped (the default method) and looping (T = 20 s, the pair sum
+    /// binned), linear and second order, with their ratios
     #[arg(long)]
     pub second_order: bool,
     /// Worker threads [default: all cores]

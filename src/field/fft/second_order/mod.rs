@@ -593,7 +593,8 @@ impl SecondOrder {
         depth: Option<f64>,
         info: SecondOrderInfo,
     ) -> Self {
-        comps.sort_by_key(|c| (c.n, c.m));
+        // (The indices are distinct: one order, however sorted.)
+        comps.sort_unstable_by_key(|c| (c.n, c.m));
         let mut lines = vec![0..0; 2 * nx + 1];
         let mut occupied = Vec::new();
         let mut start = 0;

@@ -383,7 +383,9 @@ fn hats(nodes: &[f64], qn: f64) -> [(usize, f64); 2] {
         return [(last, 1.0), (last, 0.0)];
     }
     let step = nodes[1] - nodes[0];
-    let i = ((x - nodes[0]) / step).floor().max(0.0) as usize;
+    // (The cast truncates and saturates: floor and max(0) for every value, NaN to 0,
+    // without a call to `floor` where the processor has no rounding instruction.)
+    let i = ((x - nodes[0]) / step) as usize;
     let i = i.min(last - 1);
     let f = ((x - nodes[i]) / step).clamp(0.0, 1.0);
     [(i, 1.0 - f), (i + 1, f)]

@@ -743,8 +743,14 @@ impl TransformBound {
         }
         // (The first stages are done with until the finite-depth terms.)
         self.ones.clear();
+        // The B terms' transforms gathered at the kept outputs, then given back (the
+        // finite-depth S·A terms reuse their arrays).
+        let ox_oy = (ox, self.reach.1.o);
+        let columns = (2 * ox_oy.1 + 1).max(0) as usize;
+        let mut kept = vec![C64::new(0.0, 0.0); (ox + 1).max(0) as usize * columns];
         let transformed: Acc<T> = acc.into_iter().map(transform).collect();
-        let mut sa: Acc<T> = Vec::new();
+        self.gather(&mut kept, &transformed, &layout, true);
+        pool.give_all(transformed);
         if finite {
             let mut sa_acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
@@ -767,22 +773,47 @@ impl TransformBound {
                     }
                 });
             }
-            sa = sa_acc.into_iter().map(transform).collect();
+            let sa: Acc<T> = sa_acc.into_iter().map(transform).collect();
+            self.gather(&mut kept, &sa, &layout, false);
         }
-        let setdown = self.setdown;
+        // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
+        // the grid), with the set-down at q = 0.
+        let (setdown, oy) = (self.setdown, ox_oy.1);
         let norm = 0.25 / (px * py) as f64;
-        let (outputs, depth) = (&self.outputs, self.depth);
-        // The outputs the waves reach: lines n ≤ o_x, columns |m| ≤ o_y (on the grid).
-        let oy = self.reach.1.o;
         half.data
             .par_chunks_mut(ny)
+            .zip(kept.par_chunks(columns.max(1)))
             .enumerate()
-            .take((ox + 1).max(0) as usize)
+            .for_each(|(n, (line, sums))| {
+                debug_assert!(on_grid(n as i64, nx));
+                for (j, &h) in sums.iter().enumerate() {
+                    let m = j as i64 - oy;
+                    let mut h = h * norm;
+                    if n == 0 && m == 0 {
+                        h += C64::new(setdown, 0.0);
+                    }
+                    line[m.rem_euclid(ny as i64) as usize] +=
+                        Complex::new(h.re as f32, h.im as f32);
+                }
+            });
+    }
+
+    /// Adds the transforms `accs` at each kept output (lines 0 ..= o_x, columns
+    /// −o_y ..= o_y) to `kept`: the B terms' (`b_terms`: the separable part, then the
+    /// slots of `layout` times 2T and their output coefficients), or the S·A terms' (the
+    /// slots times their coefficients). In this order, the same sums as one pass over
+    /// both.
+    fn gather<T: Real>(&self, kept: &mut [C64], accs: &Acc<T>, layout: &Layout, b_terms: bool) {
+        let (px, py) = (self.plan.px, self.plan.py);
+        let oy = self.reach.1.o;
+        let columns = (2 * oy + 1).max(0) as usize;
+        let (outputs, depth) = (&self.outputs, self.depth);
+        kept.par_chunks_mut(columns.max(1))
+            .enumerate()
             .for_each(|(n, line)| {
                 let n = n as i64;
-                debug_assert!(on_grid(n, nx));
-                for m in -oy..=oy {
-                    let v = &mut line[m.rem_euclid(ny as i64) as usize];
+                for (j, h) in line.iter_mut().enumerate() {
+                    let m = j as i64 - oy;
                     let here =
                         n.rem_euclid(px as i64) as usize * py + m.rem_euclid(py as i64) as usize;
                     let there = (-n).rem_euclid(px as i64) as usize * py
@@ -793,7 +824,7 @@ impl TransformBound {
                         (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                     };
                     let (cp, cm, t) = match outputs {
-                        Some(o) => o.at(n as usize, (m + oy) as usize),
+                        Some(o) => o.at(n as usize, j),
                         None => coefficients_at(&self.fit, self.spec, depth, n, m),
                     };
                     let zero_diff = n == 0 && m == 0;
@@ -804,21 +835,19 @@ impl TransformBound {
                         Some(Part::Diff(m)) if !zero_diff => v * (k * cm[m]),
                         _ => C64::new(0.0, 0.0),
                     };
-                    let (s, d) = unpack(&transformed[0]);
-                    let mut h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
-                    for (f, slot) in transformed[1..].iter().zip(&layout.slots) {
-                        let (s, d) = unpack(f);
-                        h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+                    if b_terms {
+                        let (s, d) = unpack(&accs[0]);
+                        *h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
+                        for (f, slot) in accs[1..].iter().zip(&layout.slots) {
+                            let (s, d) = unpack(f);
+                            *h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+                        }
+                    } else {
+                        for (f, slot) in accs.iter().zip(&layout.slots) {
+                            let (s, d) = unpack(f);
+                            *h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                        }
                     }
-                    for (f, slot) in sa.iter().zip(&layout.slots) {
-                        let (s, d) = unpack(f);
-                        h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
-                    }
-                    let mut h = h * norm;
-                    if zero_diff {
-                        h += C64::new(setdown, 0.0);
-                    }
-                    *v += Complex::new(h.re as f32, h.im as f32);
                 }
             });
     }
