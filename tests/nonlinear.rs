@@ -280,6 +280,14 @@ fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_cou
     frames_are_generate(dir.path(), &small_sea(&[]), 4);
     let side = common::json_file(&dir.path().join("g.json"));
     assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
+    // The same at finite depth (double precision, the S·A terms), the fitted method asked
+    // for: a sequence's output coefficients are tabulated once, a single frame's computed
+    // at each output.
+    let dir = tempfile::tempdir().unwrap();
+    let depth_20 = ["--depth", "20", "--set", "spectrum.nonlinear_method=fitted"];
+    frames_are_generate(dir.path(), &small_sea(&depth_20), 4);
+    let side = common::json_file(&dir.path().join("g.json"));
+    assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
 }
 
 #[test]

@@ -99,3 +99,43 @@ fn the_neumann_basis_with_its_series_coefficients_is_the_truncated_series() {
         (6, 4, (-1, 6))
     );
 }
+
+#[test]
+fn the_sampler_picks_the_index_of_a_binary_search() {
+    // The guide table finds the first index whose cumulative weight exceeds u·total, the
+    // last if none does: what a binary search of the cumulative weights finds, for weights
+    // of many scales with zeros among them, at u on and beside the steps' bounds and the
+    // cumulative weights.
+    let w: Vec<f64> = (0..700)
+        .map(|i| match i % 7 {
+            0 => 0.0,
+            1 => 1e-9 * i as f64,
+            _ => (i as f64 * 0.37).sin().abs() * 10f64.powi(i % 5),
+        })
+        .collect();
+    let sampler = Sampler::new(&w);
+    let total = *sampler.cum.last().unwrap();
+    let search = |u: f64| {
+        let x = u * total;
+        sampler
+            .cum
+            .partition_point(|&c| c <= x)
+            .min(sampler.cum.len() - 1)
+    };
+    let mut us: Vec<f64> = (0..20_000).map(|t| uniform(t, 9).0).collect();
+    for b in 0..GUIDES {
+        let u = b as f64 / GUIDES as f64;
+        us.extend([u, f64::from_bits(u.to_bits() + 1), (u - 1e-17).max(0.0)]);
+    }
+    for &c in sampler.cum.iter().step_by(3) {
+        let u = c / total;
+        us.extend(
+            [u, f64::from_bits(u.to_bits() + 1)]
+                .into_iter()
+                .filter(|&u| u < 1.0),
+        );
+    }
+    for u in us {
+        assert_eq!(sampler.pick(u), search(u), "u = {u}");
+    }
+}
