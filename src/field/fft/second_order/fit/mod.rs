@@ -397,21 +397,25 @@ fn hats(nodes: &[f64], qn: f64) -> [(usize, f64); 2] {
 pub struct Bases {
     pub sum: Vec<SumTerm>,
     pub diff_powers: usize,
+    /// The least and largest exponent of the sum basis's monomials.
+    sum_exponents: (i32, i32),
 }
 
 impl Bases {
     /// Deep water: the products of the exponents −1, 0, 1, powers m ≤ 3; finite depth: the
     /// Neumann series of order 3, powers m ≤ 4.
     pub fn for_depth(depth: Option<f64>) -> Self {
-        match depth {
-            None => Self {
-                sum: product_basis(),
-                diff_powers: DEEP_DIFF_POWERS,
-            },
-            Some(_) => Self {
-                sum: neumann_basis(FINITE_NEUMANN_ORDER),
-                diff_powers: FINITE_DIFF_POWERS,
-            },
+        let (sum, diff_powers) = match depth {
+            None => (product_basis(), DEEP_DIFF_POWERS),
+            Some(_) => (neumann_basis(FINITE_NEUMANN_ORDER), FINITE_DIFF_POWERS),
+        };
+        let each = sum.iter().flat_map(|t| t.monomials.iter());
+        let lo = each.clone().map(|&(_, u, v)| u.min(v)).min().unwrap_or(0);
+        let hi = each.map(|&(_, u, v)| u.max(v)).max().unwrap_or(0);
+        Self {
+            sum,
+            diff_powers,
+            sum_exponents: (lo, hi),
         }
     }
 
@@ -422,14 +426,6 @@ impl Bases {
         } else {
             self.diff_powers + 1
         }
-    }
-
-    /// The least and largest exponent of the sum basis's monomials.
-    fn sum_exponents(&self) -> (i32, i32) {
-        let each = self.sum.iter().flat_map(|t| t.monomials.iter());
-        let lo = each.clone().map(|&(_, u, v)| u.min(v)).min().unwrap_or(0);
-        let hi = each.map(|&(_, u, v)| u.max(v)).max().unwrap_or(0);
-        (lo, hi)
     }
 
     /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read
@@ -461,7 +457,7 @@ impl Bases {
         let tt = t / (s_ref * s_ref);
         // x^e of both waves for the exponents lo ..= hi of the monomials, each once (the
         // same values as powi of each monomial's own).
-        let (lo, hi) = self.sum_exponents();
+        let (lo, hi) = self.sum_exponents;
         let (mut pa, mut pb) = ([0.0; POWERS], [0.0; POWERS]);
         for e in lo..=hi {
             let i = (e - lo) as usize;
