@@ -702,6 +702,19 @@ impl TransformBound {
         let terms: Vec<Vec<(usize, f64)>> = (0..=bases.diff_powers)
             .map(|m| expansion(m).collect())
             .collect();
+        // A factor with itself (the B terms): Re(f_a conj f_b) = Re(f_b conj f_a), and the
+        // expansion's weights are symmetric (w_a = w_{2m−a}), so the terms a < m are taken
+        // twice and a > m left out.
+        let halves: Vec<Vec<(usize, f64)>> = terms
+            .iter()
+            .enumerate()
+            .map(|(m, t)| {
+                t.iter()
+                    .filter(|&&(a, _)| a <= m)
+                    .map(|&(a, w)| (a, if a < m { 2.0 * w } else { w }))
+                    .collect()
+            })
+            .collect();
         let layout = Layout::new(bases.len(0), bases.len(1));
         let groups = layout.slots.len();
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
@@ -735,7 +748,7 @@ impl TransformBound {
                     }
                 }
                 let mut sum = Vec::new();
-                for (m, (t, &(g, im))) in terms.iter().zip(&layout.diff).enumerate() {
+                for (m, (t, &(g, im))) in halves.iter().zip(&layout.diff).enumerate() {
                     let p = &p[at(0)..];
                     power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
                 }
