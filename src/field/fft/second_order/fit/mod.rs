@@ -544,22 +544,28 @@ impl KernelFit {
             for (a, b, sp) in pairs(2 * term as u64, sign) {
                 let phi = bases.eval(a, b, s_ref, term, resonance_t(sp.qn, depth));
                 let h = hats2(&nodes, na, sp.qn, sp.qx, sp.qy);
-                let mut idx = [0usize; 64];
-                let mut val = [0.0f64; 64];
-                let mut n = 0;
+                // The functions of the output's nodes (one or two adjacent nodes of √|q|,
+                // a single angle node: the unknowns start .. start + n, in order).
+                const { assert!(ANGLE_NODES == 1, "adjacent nodes: one angle node") };
+                let mut val = [0.0f64; 2 * MAX_NB];
+                let (mut start, mut n) = (0, 0);
                 for &(node, hw) in h.iter().filter(|h| h.1 != 0.0) {
-                    for (l, &p) in phi.iter().take(nb).enumerate() {
-                        idx[n] = node * nb + l;
+                    if n == 0 {
+                        start = node * nb;
+                    }
+                    debug_assert_eq!(start + n, node * nb);
+                    for &p in phi.iter().take(nb) {
                         val[n] = hw * p * sp.num;
                         n += 1;
                     }
                 }
-                // The lower triangle only (the indices ascend, so idx[y] ≤ idx[x]): all
-                // that the Cholesky solve reads.
+                // The lower triangle only: all that the Cholesky solve reads.
                 for x in 0..n {
-                    atb[idx[x]] += val[x] * sp.ns;
-                    for y in 0..=x {
-                        ata[idx[x] * dim + idx[y]] += val[x] * val[y];
+                    atb[start + x] += val[x] * sp.ns;
+                    let row = (start + x) * dim + start;
+                    let vx = val[x];
+                    for (a, &vy) in ata[row..=row + x].iter_mut().zip(&val[..=x]) {
+                        *a += vx * vy;
                     }
                 }
             }
