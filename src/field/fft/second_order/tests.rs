@@ -274,3 +274,52 @@ fn pairs_beyond_nyquist_are_dropped_and_counted() {
     assert_eq!(info.sum_pairs_dropped, 3);
     assert_eq!(info.difference_pairs_dropped, 0);
 }
+
+#[test]
+fn the_components_within_the_limit_are_those_of_every_line_that_it_admits() {
+    // The components within the convergence limit are drawn on the kx lines below its k_up
+    // only: the same components (indices, draws, in order) as every line's components
+    // that the limit admits, deep and at finite depth (where it also has a lower bound),
+    // with a limit far inside the grid and one beyond it.
+    for (sets, c) in [
+        (vec![], 2.0),
+        (vec!["depth=12"], 2.0),
+        (vec!["depth=12"], 0.5),
+        (vec![], 500.0),
+    ] {
+        let mut all = vec![
+            "method=fft",
+            "spectrum=pierson-moskowitz",
+            "wind-speed=15",
+            "spectrum.spreading=hasselmann",
+            "size=128",
+            "extent=512",
+        ];
+        all.extend(sets.iter().copied());
+        let params = params_of(&all);
+        let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+        let setup = SpectrumSetup {
+            spec: params.grid_spec(),
+            spectrum: model.as_ref(),
+            dispersion,
+            seed: 5,
+            time_s: 0.0,
+            loop_period_s: None,
+        };
+        let cut = Cutoff::of(&setup, c);
+        // The limit inside the grid skips lines; beyond it, none.
+        assert_eq!(lines_within(&setup, Some(cut)) < 65, c < 100.0, "C = {c}");
+        let within = SecondOrder::within(&setup, 1.0, Some(cut));
+        let every = SecondOrder::within(&setup, 1.0, None);
+        let admitted: Vec<&Component> = every
+            .components()
+            .iter()
+            .filter(|c| cut.admits(c.r))
+            .collect();
+        assert!(!admitted.is_empty() && admitted.len() < every.components().len() || c > 100.0);
+        let key = |c: &Component| (c.n, c.m, c.rho.to_bits(), c.phi.to_bits());
+        let got: Vec<_> = within.components().iter().map(key).collect();
+        let want: Vec<_> = admitted.into_iter().map(key).collect();
+        assert_eq!(got, want, "{sets:?}, C = {c}");
+    }
+}
