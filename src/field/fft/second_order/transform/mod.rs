@@ -14,12 +14,13 @@
 //! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
 
 use rayon::prelude::*;
-use rustfft::FftNum;
 use rustfft::num_complex::Complex;
 
 use grid::{Plan, Pool, Reach};
+use outputs::Outputs;
+use products::{Acc, Layout, Real, expansion, part, power_term};
 
-use super::fit::{Box2, KernelFit, MAX_NB, POWERS, Region, binomial, resonance_t};
+use super::fit::{Box2, KernelFit, MAX_NB, POWERS, Region};
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -81,139 +82,6 @@ impl Factor {
     }
 }
 
-/// δ^{2m} = (x_i − x_j)^{2m} = Σ_a w_a x_i^a x_j^{2m−a}: the terms (a, w_a).
-fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
-    let n = 2 * m;
-    (0..=n).map(move |a| {
-        let c = binomial(n, a);
-        (a, if a % 2 == 0 { c } else { -c })
-    })
-}
-
-/// The accumulators of every padded cell (py rows of px), one array an accumulator (the
-/// separable part, then each group), each then transformed in place.
-type Acc<T> = Vec<Vec<Complex<T>>>;
-
-/// The precision of the accumulators and their forward transforms: double at finite
-/// depth, where the S·A terms cancel to within single precision's rounding (and the
-/// difference powers' expansion of δ^{2m} amplifies it at small |q|), single in deep
-/// water, where the S·A terms are absent (the products are formed in double precision
-/// either way; tested against the pair sum of the same kernels).
-trait Real: FftNum + std::ops::AddAssign {
-    fn of(x: f64) -> Self;
-    fn wide(self) -> f64;
-    /// The forward transforms and the arrays of this precision.
-    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>);
-}
-
-impl Real for f64 {
-    #[inline]
-    fn of(x: f64) -> Self {
-        x
-    }
-    #[inline]
-    fn wide(self) -> f64 {
-        self
-    }
-    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>) {
-        (&tb.plan, &tb.pool)
-    }
-}
-
-impl Real for f32 {
-    #[inline]
-    fn of(x: f64) -> Self {
-        x as f32
-    }
-    #[inline]
-    fn wide(self) -> f64 {
-        f64::from(self)
-    }
-    fn forward(tb: &TransformBound) -> (&Plan<Self>, &Pool<Self>) {
-        (&tb.plan32, &tb.pool32)
-    }
-}
-
-/// The real (`im` false) or imaginary part of `c`.
-#[inline]
-fn part<T>(c: &mut Complex<T>, im: bool) -> &mut T {
-    if im { &mut c.im } else { &mut c.re }
-}
-
-/// A real product field: the sum term's basis function l or the difference power m.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Part {
-    Sum(usize),
-    Diff(usize),
-}
-
-/// Where the weighted real product fields go, two to a complex accumulator (its real and
-/// imaginary parts, told apart after the forward transform by Hermitian symmetry): sum
-/// function l beside difference power l while both bases have one, the rest of the
-/// longer basis two by two.
-struct Layout {
-    /// The parts of each weighted accumulator.
-    slots: Vec<[Option<Part>; 2]>,
-    /// Accumulator and part (imaginary?) of each sum function, of each difference power.
-    sum: Vec<(usize, bool)>,
-    diff: Vec<(usize, bool)>,
-}
-
-impl Layout {
-    fn new(n_sum: usize, n_diff: usize) -> Self {
-        let mut slots: Vec<[Option<Part>; 2]> = (0..n_sum.min(n_diff))
-            .map(|l| [Some(Part::Sum(l)), Some(Part::Diff(l))])
-            .collect();
-        let rest: Vec<Part> = (n_diff..n_sum)
-            .map(Part::Sum)
-            .chain((n_sum..n_diff).map(Part::Diff))
-            .collect();
-        slots.extend(rest.chunks(2).map(|p| [Some(p[0]), p.get(1).copied()]));
-        let (mut sum, mut diff) = (vec![(0, false); n_sum], vec![(0, false); n_diff]);
-        for (g, slot) in slots.iter().enumerate() {
-            for (k, p) in slot.iter().enumerate() {
-                match p {
-                    Some(Part::Sum(l)) => sum[*l] = (g, k == 1),
-                    Some(Part::Diff(m)) => diff[*m] = (g, k == 1),
-                    None => {}
-                }
-            }
-        }
-        Self { slots, sum, diff }
-    }
-}
-
-/// A value of `T` in double precision.
-#[inline]
-fn wide<T: Real>(v: Complex<T>) -> C64 {
-    C64::new(v.re.wide(), v.im.wide())
-}
-
-/// `out`'s real (`im` false) or imaginary part += Σ_a w_a Re(f_a conj g_{2m−a}) at each
-/// cell of a row, over the terms of [`expansion`] (f, g the rows of the fields of
-/// exponents 0, 1, …), summed in the terms' order, then scaled (`sum` a row of scratch).
-#[inline]
-fn power_term<T: Real>(
-    out: &mut [Complex<T>],
-    f: &[&[C64]],
-    g: &[&[C64]],
-    terms: &[(usize, f64)],
-    m: usize,
-    (scale, im): (f64, bool),
-    sum: &mut Vec<f64>,
-) {
-    sum.clear();
-    sum.resize(out.len(), 0.0);
-    for &(a, w) in terms {
-        for ((d, x), y) in sum.iter_mut().zip(f[a]).zip(g[2 * m - a]) {
-            *d += w * (x * y.conj()).re;
-        }
-    }
-    for (o, d) in out.iter_mut().zip(sum.iter()) {
-        *part(o, im) += T::of(scale * d);
-    }
-}
-
 /// The bound waves of a set of components through the fitted kernels, by transforms.
 pub struct TransformBound {
     comps: Vec<Wave>,
@@ -243,74 +111,6 @@ pub struct TransformBound {
     /// at each output of the frame.
     outputs: Option<Outputs>,
     spec: GridSpec,
-}
-
-/// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
-/// [`KernelFit::output_coefficients`]' sum and difference coefficients, and T.
-#[inline]
-fn coefficients_at(
-    fit: &KernelFit,
-    spec: GridSpec,
-    depth: Option<f64>,
-    n: i64,
-    m: i64,
-) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
-    let tau = std::f64::consts::TAU;
-    let qx = tau * n as f64 / spec.extent_x_m;
-    let qy = tau * m as f64 / spec.extent_y_m;
-    // (Not `hypot`: no overflow to guard against here, at a fraction of its cost.)
-    let qn = (qx * qx + qy * qy).sqrt();
-    let t = resonance_t(qn, depth);
-    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
-    (cp, cm, t)
-}
-
-/// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
-/// `stride` values a cell: the sum basis's, the difference powers', T.
-struct Outputs {
-    values: Vec<f64>,
-    n_sum: usize,
-    n_diff: usize,
-    stride: usize,
-    columns: usize,
-}
-
-impl Outputs {
-    fn new(fit: &KernelFit, spec: GridSpec, depth: Option<f64>, (ox, oy): (i64, i64)) -> Self {
-        let (n_sum, n_diff) = (fit.bases.len(0), fit.bases.len(1));
-        let stride = n_sum + n_diff + 1;
-        let columns = (2 * oy + 1).max(0) as usize;
-        let lines = (ox + 1).max(0) as usize;
-        let mut values = vec![0.0; lines * columns * stride];
-        values
-            .par_chunks_mut(columns * stride)
-            .enumerate()
-            .for_each(|(n, line)| {
-                for (j, cell) in line.chunks_exact_mut(stride).enumerate() {
-                    let (cp, cm, t) = coefficients_at(fit, spec, depth, n as i64, j as i64 - oy);
-                    cell[..n_sum].copy_from_slice(&cp[..n_sum]);
-                    cell[n_sum..n_sum + n_diff].copy_from_slice(&cm[..n_diff]);
-                    cell[stride - 1] = t;
-                }
-            });
-        Self {
-            values,
-            n_sum,
-            n_diff,
-            stride,
-            columns,
-        }
-    }
-
-    /// The sum coefficients, the difference coefficients and T of output (n, −o_y + j).
-    #[inline]
-    fn at(&self, n: usize, j: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
-        let c = &self.values[(n * self.columns + j) * self.stride..][..self.stride];
-        let (mut cp, mut cm) = ([0.0; MAX_NB], [0.0; MAX_NB]);
-        cp[..self.n_sum].copy_from_slice(&c[..self.n_sum]);
-        cm[..self.n_diff].copy_from_slice(&c[self.n_sum..self.n_sum + self.n_diff]);
-        (cp, cm, c[self.stride - 1])
-    }
 }
 
 /// The reach of `comps` on a grid of nx × ny.
@@ -362,14 +162,6 @@ impl TransformBound {
             ones: Pool::default(),
             fit,
         }
-    }
-
-    /// Tabulates the output coefficients for the frames to come (a sequence: the same at
-    /// every time, 8 bytes × (the bases' functions + 1) an output kept; the same values
-    /// as computed at each frame).
-    pub fn keep_outputs(&mut self) {
-        let o = (self.reach.0.o, self.reach.1.o);
-        self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
     }
 
     /// The region of the fit for `comps` of `setup`: their box, the box of the outputs
@@ -810,62 +602,10 @@ impl TransformBound {
                 }
             });
     }
-
-    /// Adds the transforms `accs` at each kept output (lines 0 ..= o_x, columns
-    /// −o_y ..= o_y) to `kept`: the B terms' (`b_terms`: the separable part, then the
-    /// slots of `layout` times 2T and their output coefficients), or the S·A terms' (the
-    /// slots times their coefficients). In this order, the same sums as one pass over
-    /// both.
-    fn gather<T: Real>(&self, kept: &mut [C64], accs: &Acc<T>, layout: &Layout, b_terms: bool) {
-        let (px, py) = (self.plan.px, self.plan.py);
-        let oy = self.reach.1.o;
-        let columns = (2 * oy + 1).max(0) as usize;
-        let (outputs, depth) = (&self.outputs, self.depth);
-        kept.par_chunks_mut(columns.max(1))
-            .enumerate()
-            .for_each(|(n, line)| {
-                let n = n as i64;
-                for (j, h) in line.iter_mut().enumerate() {
-                    let m = j as i64 - oy;
-                    let here =
-                        n.rem_euclid(px as i64) as usize * py + m.rem_euclid(py as i64) as usize;
-                    let there = (-n).rem_euclid(px as i64) as usize * py
-                        + (-m).rem_euclid(py as i64) as usize;
-                    // The sum (re) and difference (im) parts of a packed transform.
-                    let unpack = |f: &[Complex<T>]| {
-                        let (a, b) = (wide(f[here]), wide(f[there]).conj());
-                        (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
-                    };
-                    let (cp, cm, t) = match outputs {
-                        Some(o) => o.at(n as usize, j),
-                        None => coefficients_at(&self.fit, self.spec, depth, n, m),
-                    };
-                    let zero_diff = n == 0 && m == 0;
-                    // A slot's part times its output coefficient (`k` 2T for the B terms,
-                    // 1 for the S·A terms).
-                    let weighted = |v: C64, p: Option<Part>, k: f64| match p {
-                        Some(Part::Sum(l)) => v * (k * cp[l]),
-                        Some(Part::Diff(m)) if !zero_diff => v * (k * cm[m]),
-                        _ => C64::new(0.0, 0.0),
-                    };
-                    if b_terms {
-                        let (s, d) = unpack(&accs[0]);
-                        *h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
-                        for (f, slot) in accs[1..].iter().zip(&layout.slots) {
-                            let (s, d) = unpack(f);
-                            *h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
-                        }
-                    } else {
-                        for (f, slot) in accs.iter().zip(&layout.slots) {
-                            let (s, d) = unpack(f);
-                            *h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
-                        }
-                    }
-                }
-            });
-    }
 }
 
 mod grid;
+mod outputs;
+mod products;
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,150 @@
+//! What multiplies the fitted frame's transforms at each output kept: the output
+//! coefficients of the fit (a function of q alone, tabulated once for a sequence), and
+//! the gathering of the transforms there.
+
+use rayon::prelude::*;
+use rustfft::num_complex::Complex;
+
+use super::super::C64;
+use super::super::fit::{KernelFit, MAX_NB, resonance_t};
+use super::TransformBound;
+use super::products::{Acc, Layout, Part, Real, wide};
+use crate::grid::GridSpec;
+
+/// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
+/// [`KernelFit::output_coefficients`]' sum and difference coefficients, and T.
+#[inline]
+pub(super) fn coefficients_at(
+    fit: &KernelFit,
+    spec: GridSpec,
+    depth: Option<f64>,
+    n: i64,
+    m: i64,
+) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
+    let tau = std::f64::consts::TAU;
+    let qx = tau * n as f64 / spec.extent_x_m;
+    let qy = tau * m as f64 / spec.extent_y_m;
+    // (Not `hypot`: no overflow to guard against here, at a fraction of its cost.)
+    let qn = (qx * qx + qy * qy).sqrt();
+    let t = resonance_t(qn, depth);
+    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+    (cp, cm, t)
+}
+
+/// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
+/// `stride` values a cell: the sum basis's, the difference powers', T.
+pub(super) struct Outputs {
+    values: Vec<f64>,
+    n_sum: usize,
+    n_diff: usize,
+    stride: usize,
+    columns: usize,
+}
+
+impl Outputs {
+    fn new(fit: &KernelFit, spec: GridSpec, depth: Option<f64>, (ox, oy): (i64, i64)) -> Self {
+        let (n_sum, n_diff) = (fit.bases.len(0), fit.bases.len(1));
+        let stride = n_sum + n_diff + 1;
+        let columns = (2 * oy + 1).max(0) as usize;
+        let lines = (ox + 1).max(0) as usize;
+        let mut values = vec![0.0; lines * columns * stride];
+        values
+            .par_chunks_mut(columns * stride)
+            .enumerate()
+            .for_each(|(n, line)| {
+                for (j, cell) in line.chunks_exact_mut(stride).enumerate() {
+                    let (cp, cm, t) = coefficients_at(fit, spec, depth, n as i64, j as i64 - oy);
+                    cell[..n_sum].copy_from_slice(&cp[..n_sum]);
+                    cell[n_sum..n_sum + n_diff].copy_from_slice(&cm[..n_diff]);
+                    cell[stride - 1] = t;
+                }
+            });
+        Self {
+            values,
+            n_sum,
+            n_diff,
+            stride,
+            columns,
+        }
+    }
+
+    /// The sum coefficients, the difference coefficients and T of output (n, −o_y + j).
+    #[inline]
+    fn at(&self, n: usize, j: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
+        let c = &self.values[(n * self.columns + j) * self.stride..][..self.stride];
+        let (mut cp, mut cm) = ([0.0; MAX_NB], [0.0; MAX_NB]);
+        cp[..self.n_sum].copy_from_slice(&c[..self.n_sum]);
+        cm[..self.n_diff].copy_from_slice(&c[self.n_sum..self.n_sum + self.n_diff]);
+        (cp, cm, c[self.stride - 1])
+    }
+}
+
+impl TransformBound {
+    /// Tabulates the output coefficients for the frames to come (a sequence: the same at
+    /// every time, 8 bytes × (the bases' functions + 1) an output kept; the same values
+    /// as computed at each frame).
+    pub fn keep_outputs(&mut self) {
+        let o = (self.reach.0.o, self.reach.1.o);
+        self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
+    }
+
+    /// Adds the transforms `accs` at each kept output (lines 0 ..= o_x, columns
+    /// −o_y ..= o_y) to `kept`: the B terms' (`b_terms`: the separable part, then the
+    /// slots of `layout` times 2T and their output coefficients), or the S·A terms' (the
+    /// slots times their coefficients). In this order, the same sums as one pass over
+    /// both.
+    pub(super) fn gather<T: Real>(
+        &self,
+        kept: &mut [C64],
+        accs: &Acc<T>,
+        layout: &Layout,
+        b_terms: bool,
+    ) {
+        let (px, py) = (self.plan.px, self.plan.py);
+        let oy = self.reach.1.o;
+        let columns = (2 * oy + 1).max(0) as usize;
+        let (outputs, depth) = (&self.outputs, self.depth);
+        kept.par_chunks_mut(columns.max(1))
+            .enumerate()
+            .for_each(|(n, line)| {
+                let n = n as i64;
+                for (j, h) in line.iter_mut().enumerate() {
+                    let m = j as i64 - oy;
+                    let here =
+                        n.rem_euclid(px as i64) as usize * py + m.rem_euclid(py as i64) as usize;
+                    let there = (-n).rem_euclid(px as i64) as usize * py
+                        + (-m).rem_euclid(py as i64) as usize;
+                    // The sum (re) and difference (im) parts of a packed transform.
+                    let unpack = |f: &[Complex<T>]| {
+                        let (a, b) = (wide(f[here]), wide(f[there]).conj());
+                        (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
+                    };
+                    let (cp, cm, t) = match outputs {
+                        Some(o) => o.at(n as usize, j),
+                        None => coefficients_at(&self.fit, self.spec, depth, n, m),
+                    };
+                    let zero_diff = n == 0 && m == 0;
+                    // A slot's part times its output coefficient (`k` 2T for the B terms,
+                    // 1 for the S·A terms).
+                    let weighted = |v: C64, p: Option<Part>, k: f64| match p {
+                        Some(Part::Sum(l)) => v * (k * cp[l]),
+                        Some(Part::Diff(m)) if !zero_diff => v * (k * cm[m]),
+                        _ => C64::new(0.0, 0.0),
+                    };
+                    if b_terms {
+                        let (s, d) = unpack(&accs[0]);
+                        *h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
+                        for (f, slot) in accs[1..].iter().zip(&layout.slots) {
+                            let (s, d) = unpack(f);
+                            *h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+                        }
+                    } else {
+                        for (f, slot) in accs.iter().zip(&layout.slots) {
+                            let (s, d) = unpack(f);
+                            *h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                        }
+                    }
+                }
+            });
+    }
+}
