@@ -323,20 +323,21 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
     // machine to slow one run.)
     let sequence = |extra: &[(&str, &str)]| -> Result<Duration> {
         let p = sea(extra)?;
-        let mut runs = Vec::new();
-        for _ in 0..SEQUENCE_RUNS {
-            let t = Instant::now();
-            crate::pipeline::sequence::each_frame(
+        let mut failed = Ok(());
+        let d = time(SEQUENCE_RUNS, || {
+            let run = crate::pipeline::sequence::each_frame(
                 &p,
                 LOOP_FRAMES,
                 Extras::default(),
                 false,
                 |_| true,
-            )?;
-            runs.push(t.elapsed());
-        }
-        runs.sort();
-        Ok(runs[runs.len() / 2])
+            );
+            if let Err(e) = run {
+                failed = Err(e);
+            }
+        });
+        failed?;
+        Ok(d)
     };
     let loop20 = ("loop-period", "20");
     let linear_seq = sequence(&[])?;

@@ -28,7 +28,7 @@ impl Cutoff {
         let isa = Isa::detect();
         let depth = depth_of(setup.dispersion);
         let every = setup.spec.nx / 2 + 1;
-        let lines = lines_of(setup, isa, (every, false), &|draws| {
+        let lines = lines_of(setup, isa, every, false, &|draws| {
             let (mut m0, mut m2) = (0.0, 0.0);
             for d in draws {
                 m0 += 2.0 * d.p;

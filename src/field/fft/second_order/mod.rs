@@ -245,7 +245,8 @@ impl Draw {
 fn lines_of<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
-    (lines, draws): (usize, bool),
+    lines: usize,
+    draws: bool,
     line: &(dyn Fn(&[Draw]) -> T + Sync),
 ) -> Vec<T> {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
@@ -258,7 +259,9 @@ fn lines_of<T: Send>(
             for idx in r {
                 let m = signed_index(idx, ny);
                 let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
-                    if if draws { rho > 0.0 } else { p > P_FLOOR_M2 } {
+                    // (A draw has energy where E|h̃0|² is above the floor.)
+                    let energy = if draws { rho > 0.0 } else { p > P_FLOOR_M2 };
+                    if energy {
                         out.push(Draw { n, m, p, rho, phi });
                     }
                 };
@@ -301,7 +304,7 @@ fn each_line<T: Send>(
     lines: usize,
     keep: &(dyn Fn(Draw) -> Option<T> + Sync),
 ) -> Vec<Vec<T>> {
-    lines_of(setup, isa, (lines, true), &|draws| {
+    lines_of(setup, isa, lines, true, &|draws| {
         draws.iter().filter_map(|&d| keep(d)).collect()
     })
 }
@@ -320,7 +323,7 @@ fn octaves(
     lines: usize,
     admit: &(dyn Fn(&Draw) -> bool + Sync),
 ) -> (Vec<(f64, usize)>, f64) {
-    let lines = lines_of(setup, isa, (lines, true), &|draws| {
+    let lines = lines_of(setup, isa, lines, true, &|draws| {
         let mut dense = vec![(0.0f64, 0usize); 0x800];
         let mut total = 0.0;
         for d in draws.iter().filter(|d| admit(d)) {

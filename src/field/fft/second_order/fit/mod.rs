@@ -318,10 +318,8 @@ impl Bases {
     /// The least and largest exponent e of the fields (|s|/s_p)^e the two bases read
     /// (−1 and 1 at least: they also give the separable part's R_i + R_j).
     pub fn exponents(&self) -> (i32, i32) {
-        let each = self.sum.iter().flat_map(|t| t.monomials.iter());
-        let lo = each.clone().map(|&(_, u, v)| u.min(v)).fold(-1, i32::min);
-        let hi = each.map(|&(_, u, v)| u.max(v)).fold(0, i32::max);
-        (lo, hi.max(2 * self.diff_powers as i32))
+        let (lo, hi) = self.sum_exponents;
+        (lo.min(-1), hi.max(0).max(2 * self.diff_powers as i32))
     }
 
     /// The basis of the sum term (`term` 0) or the difference term (1) of two waves, T

@@ -86,8 +86,6 @@ impl Factor {
 pub struct TransformBound {
     comps: Vec<Wave>,
     depth: Option<f64>,
-    nx: usize,
-    ny: usize,
     /// The reach of the waves on each axis (the padded grid and the outputs kept).
     reach: (Reach, Reach),
     /// The exact set-down Σ 4ρ_i² K⁻_ii that replaces the difference terms at q = 0 (it
@@ -150,8 +148,6 @@ impl TransformBound {
             setdown,
             comps,
             depth,
-            nx,
-            ny,
             reach,
             plan: Plan::new(reach.0.len, reach.1.len),
             plan32: Plan::new(reach.0.len, reach.1.len),
@@ -223,22 +219,15 @@ impl TransformBound {
         (me, info)
     }
 
-    /// f(k_i)·w(k_i)·b_i of component `c`: its amplitude `bi` weighted by a factor and
-    /// by w = (|s|/s_p)^e (1 without an exponent).
-    #[inline]
-    fn weighted(&self, c: &Wave, bi: C64, f: Factor, exponent: Option<i32>) -> C64 {
-        let w = exponent.map_or(1.0, |e| (c.s.abs() / self.fit.s_ref).powi(e));
-        bi * (f.of(c) * w)
-    }
-
-    /// The field Σ_i f(k_i)·w(k_i)·b_i e^{ik_i·x} on the padded grid (py rows of px).
-    fn field(&self, b: &[C64], f: Factor, exponent: Option<i32>, pool: &Pool<f64>) -> Vec<C64> {
+    /// The occupancy field Σ_i e^{ik_i·x} of the components on the padded grid (py rows
+    /// of px).
+    fn occupancy(&self, pool: &Pool<f64>) -> Vec<C64> {
         let (px, py) = (self.plan.px, self.plan.py);
         let mut data = pool.take(px * py);
-        for (c, &bi) in self.comps.iter().zip(b) {
+        for c in &self.comps {
             let row = i64::from(c.n).rem_euclid(px as i64) as usize;
             let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-            data[row * py + col] += self.weighted(c, bi, f, exponent);
+            data[row * py + col] += C64::new(1.0, 0.0);
         }
         self.plan.inverse(&mut data, pool);
         data
@@ -277,7 +266,6 @@ impl TransformBound {
                         let (bi, v) = (b[ci as usize], f.of(c));
                         let x = c.s.abs() / self.fit.s_ref;
                         for (l, row) in rows.chunks_exact_mut(py).enumerate() {
-                            // (The same values as `weighted`.)
                             row[col] += bi * (v * x.powi(lo + l as i32));
                         }
                     }
@@ -412,11 +400,10 @@ impl TransformBound {
         if self.reach.0.all_on_grid() && self.reach.1.all_on_grid() {
             return (0, 0);
         }
-        let (nx, ny) = (self.nx as i64, self.ny as i64);
+        let (nx, ny) = (self.spec.nx as i64, self.spec.ny as i64);
         let (px, py) = (self.plan.px, self.plan.py);
-        let ones = vec![C64::new(1.0, 0.0); self.comps.len()];
         let pool = Pool::default();
-        let a = self.field(&ones, Factor::W0, None, &pool);
+        let a = self.occupancy(&pool);
         let mut acc: Vec<C64> = a
             .iter()
             .map(|x| C64::new((x * x).re, x.norm_sqr()))
@@ -445,7 +432,7 @@ impl TransformBound {
             .iter()
             .filter(|c| {
                 let (n, m) = (i64::from(c.n), i64::from(c.m));
-                !(on_grid(2 * n, self.nx) && on_grid(2 * m, self.ny))
+                !(on_grid(2 * n, self.spec.nx) && on_grid(2 * m, self.spec.ny))
             })
             .count() as u64;
         let sums = (sums / norm).round() as u64;
@@ -476,7 +463,7 @@ impl TransformBound {
 
     /// [`Self::add_to`] with the amplitudes `b` at the time, accumulators of precision `T`.
     fn add_as<T: Real>(&self, b: &[C64], half: &mut HalfSpectrum) {
-        let (nx, ny) = (self.nx, self.ny);
+        let (nx, ny) = (self.spec.nx, self.spec.ny);
         let (px, py) = (self.plan.px, self.plan.py);
         let finite = self.depth.is_some();
         let (plan, pool) = T::forward(self);
