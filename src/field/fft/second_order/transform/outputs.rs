@@ -32,12 +32,11 @@ pub(super) fn coefficients_at(
 }
 
 /// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
-/// `stride` values a cell: the sum basis's, the difference powers', T.
+/// n_sum + n_diff + 1 values a cell: the sum basis's, the difference powers', T.
 pub(super) struct Outputs {
     values: Vec<f64>,
     n_sum: usize,
     n_diff: usize,
-    stride: usize,
     columns: usize,
 }
 
@@ -63,7 +62,6 @@ impl Outputs {
             values,
             n_sum,
             n_diff,
-            stride,
             columns,
         }
     }
@@ -71,11 +69,12 @@ impl Outputs {
     /// The sum coefficients, the difference coefficients and T of output (n, −o_y + j).
     #[inline]
     fn at(&self, n: usize, j: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
-        let c = &self.values[(n * self.columns + j) * self.stride..][..self.stride];
+        let stride = self.n_sum + self.n_diff + 1;
+        let c = &self.values[(n * self.columns + j) * stride..][..stride];
         let (mut cp, mut cm) = ([0.0; MAX_NB], [0.0; MAX_NB]);
         cp[..self.n_sum].copy_from_slice(&c[..self.n_sum]);
         cm[..self.n_diff].copy_from_slice(&c[self.n_sum..self.n_sum + self.n_diff]);
-        (cp, cm, c[self.stride - 1])
+        (cp, cm, c[stride - 1])
     }
 }
 
