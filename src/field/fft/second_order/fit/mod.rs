@@ -57,7 +57,7 @@ pub const MAX_NB: usize = 10;
 pub const POWERS: usize = 13;
 /// Nodes of the coefficients in √|q|, and in the angle of q over [0, π).
 const Q_NODES: usize = 24;
-const ANGLE_NODES: usize = 1;
+pub(super) const ANGLE_NODES: usize = 1;
 /// Pairs drawn for the fit, and again for the error estimate.
 const FIT_PAIRS: usize = 60_000;
 /// The deep-water sum basis: the exponents u of w_u(s) = (|s|/s_p)^u whose symmetric

@@ -236,68 +236,54 @@ impl TransformBound {
     /// The first stages of a factor's fields' inverse transforms, one field for each
     /// exponent e of `lo ..= hi` (index e − lo): Σ over the components of
     /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
-    /// row transformed along ky (rows of zeros stay zero), and stored transposed: py rows
-    /// of 2k_x + 1, so that the second stage reads a few rows of y in one run. The kx rows
-    /// are built, every exponent's at once (each component read once), and transformed a
-    /// batch at a time, then written into their columns, so no untransposed copy of a
-    /// whole field is held.
+    /// row transformed along ky where it lies (rows of zeros stay zero): 2k_x + 1 rows of
+    /// [`Self::row_stride`], every exponent's row of a kx row built at once (each
+    /// component read once). The second stage reads them across the rows, a few values
+    /// of y at a time.
     fn stage_one(&self, b: &[C64], f: Factor, (lo, hi): (i32, i32)) -> Vec<Vec<C64>> {
-        // kx rows a batch, rows of y a task of the transposition.
-        const BATCH: usize = 16;
-        const TILE: usize = 8;
-        let py = self.plan.py;
+        let (py, stride) = (self.plan.py, self.row_stride());
         let w = self.rows.len() - 1;
         let ne = (hi - lo + 1).max(0) as usize;
         let zero = C64::new(0.0, 0.0);
-        let mut fields: Vec<Vec<C64>> = (0..ne).map(|_| self.ones.take_any(w * py)).collect();
-        // A batch row: the row of every exponent, one after another.
-        let mut batch = vec![zero; BATCH.min(w) * ne * py];
-        for r0 in (0..w).step_by(BATCH) {
-            let nr = BATCH.min(w - r0);
-            let rows = &mut batch[..nr * ne * py];
-            rows.par_chunks_mut(ne * py)
-                .enumerate()
-                .for_each(|(i, rows)| {
-                    rows.fill(zero);
-                    let r = r0 + i;
-                    for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
-                        let c = &self.comps[ci as usize];
-                        let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                        let (bi, v) = (b[ci as usize], f.of(c));
-                        let x = c.s.abs() / self.fit.s_ref;
-                        for (l, row) in rows.chunks_exact_mut(py).enumerate() {
-                            row[col] += bi * (v * x.powi(lo + l as i32));
-                        }
-                    }
-                    for row in rows.chunks_exact_mut(py) {
-                        if row.iter().any(|v| *v != zero) {
-                            self.plan.inv_y.process(row);
-                        }
-                    }
-                });
-            let rows = &batch[..nr * ne * py];
-            // Each task's tile of y rows of every field.
-            let mut tasks: Vec<Vec<&mut [C64]>> = Vec::new();
-            for field in fields.iter_mut() {
-                for (c, tile) in field.chunks_mut(w * TILE).enumerate() {
-                    if tasks.len() <= c {
-                        tasks.push(Vec::with_capacity(ne));
-                    }
-                    tasks[c].push(tile);
-                }
+        let mut fields: Vec<Vec<C64>> = (0..ne).map(|_| self.ones.take_any(w * stride)).collect();
+        // Each kx row of every field, a task a kx row.
+        let mut tasks: Vec<Vec<&mut [C64]>> = (0..w).map(|_| Vec::with_capacity(ne)).collect();
+        for field in fields.iter_mut() {
+            for (row, task) in field.chunks_exact_mut(stride).zip(tasks.iter_mut()) {
+                task.push(row);
             }
-            tasks.into_par_iter().enumerate().for_each(|(c, tiles)| {
-                let y0 = c * TILE;
-                for (l, out) in tiles.into_iter().enumerate() {
-                    for (jj, line) in out.chunks_exact_mut(w).enumerate() {
-                        for (i, v) in line[r0..r0 + nr].iter_mut().enumerate() {
-                            *v = rows[(i * ne + l) * py + y0 + jj];
-                        }
+        }
+        let inv_y = &*self.plan.inv_y;
+        tasks.into_par_iter().enumerate().for_each_init(
+            || vec![zero; inv_y.get_inplace_scratch_len()],
+            |scratch, (r, mut rows)| {
+                for row in rows.iter_mut() {
+                    row.fill(zero);
+                }
+                for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
+                    let c = &self.comps[ci as usize];
+                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                    let (bi, v) = (b[ci as usize], f.of(c));
+                    let x = c.s.abs() / self.fit.s_ref;
+                    for (l, row) in rows.iter_mut().enumerate() {
+                        row[col] += bi * (v * x.powi(lo + l as i32));
                     }
                 }
-            });
-        }
+                for row in rows {
+                    let row = &mut row[..py];
+                    if row.iter().any(|v| *v != zero) {
+                        inv_y.process_with_scratch(row, scratch);
+                    }
+                }
+            },
+        );
         fields
+    }
+
+    /// The distance between the kx rows of a first stage: py and a cache line, so that
+    /// the second stage's reads down a column of them do not share one cache set.
+    fn row_stride(&self) -> usize {
+        self.plan.py + 4
     }
 
     /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
@@ -340,9 +326,9 @@ impl TransformBound {
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
         let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
-        let w = (2 * kx + 1) as usize;
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.
+        let stride = self.row_stride();
         let rows_of = |ones: &[Vec<C64>],
                        j0: usize,
                        nj: usize,
@@ -352,14 +338,18 @@ impl TransformBound {
             scratch.resize(inv_x.get_inplace_scratch_len(), zero);
             for (l, one) in ones.iter().enumerate() {
                 let block = &mut rows[l * nj * px..(l + 1) * nj * px];
-                for (jj, row) in block.chunks_exact_mut(px).enumerate() {
-                    // Row y of the first stage: n = −k_x ..= k_x, wrapped into the row.
-                    let from = &one[(j0 + jj) * w..][..w];
-                    // (px > 2k_x + o_x: the wrapped indices never meet.)
-                    let k = kx as usize;
+                for row in block.chunks_exact_mut(px) {
                     row[gap.clone()].fill(zero);
-                    row[px - k..].copy_from_slice(&from[..k]);
-                    row[..=k].copy_from_slice(&from[k..]);
+                }
+                // Kx row r = n + k_x (n = −k_x ..= k_x) into column n, wrapped (px >
+                // 2k_x + o_x: the wrapped indices never meet).
+                for (r, from) in one.chunks_exact(stride).enumerate() {
+                    let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                    for (jj, &v) in from[j0..j0 + nj].iter().enumerate() {
+                        block[jj * px + col] = v;
+                    }
+                }
+                for row in block.chunks_exact_mut(px) {
                     inv_x.process_with_scratch(row, scratch);
                 }
             }

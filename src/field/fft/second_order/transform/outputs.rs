@@ -1,18 +1,19 @@
 //! What multiplies the fitted frame's transforms at each output kept: the output
-//! coefficients of the fit (a function of q alone, tabulated once for a sequence), and
-//! the gathering of the transforms there.
+//! coefficients of the fit (a function of |q| alone, so the same at (n, m) and (n, −m);
+//! tabulated once for a sequence), and the gathering of the transforms there.
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 
 use super::super::C64;
-use super::super::fit::{KernelFit, MAX_NB, resonance_t};
+use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
 use super::products::{Acc, Layout, Part, Real, wide};
 use crate::grid::GridSpec;
 
 /// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
 /// [`KernelFit::output_coefficients`]' sum and difference coefficients, and T.
+/// (Of |q| alone: the fit has one angle node, and (n, −m) has the same |q| to the bit.)
 #[inline]
 pub(super) fn coefficients_at(
     fit: &KernelFit,
@@ -32,7 +33,8 @@ pub(super) fn coefficients_at(
 }
 
 /// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
-/// n_sum + n_diff + 1 values a cell: the sum basis's, the difference powers', T.
+/// n_sum + n_diff + 1 values a cell: the sum basis's, the difference powers', T; held
+/// for columns 0 ..= o_y (column −m reads m's).
 pub(super) struct Outputs {
     values: Vec<f64>,
     n_sum: usize,
@@ -44,7 +46,7 @@ impl Outputs {
     fn new(fit: &KernelFit, spec: GridSpec, depth: Option<f64>, (ox, oy): (i64, i64)) -> Self {
         let (n_sum, n_diff) = (fit.bases.len(0), fit.bases.len(1));
         let stride = n_sum + n_diff + 1;
-        let columns = (2 * oy + 1).max(0) as usize;
+        let columns = (oy + 1).max(0) as usize;
         let lines = (ox + 1).max(0) as usize;
         let mut values = vec![0.0; lines * columns * stride];
         values
@@ -52,7 +54,7 @@ impl Outputs {
             .enumerate()
             .for_each(|(n, line)| {
                 for (j, cell) in line.chunks_exact_mut(stride).enumerate() {
-                    let (cp, cm, t) = coefficients_at(fit, spec, depth, n as i64, j as i64 - oy);
+                    let (cp, cm, t) = coefficients_at(fit, spec, depth, n as i64, j as i64);
                     cell[..n_sum].copy_from_slice(&cp[..n_sum]);
                     cell[n_sum..n_sum + n_diff].copy_from_slice(&cm[..n_diff]);
                     cell[stride - 1] = t;
@@ -66,11 +68,11 @@ impl Outputs {
         }
     }
 
-    /// The sum coefficients, the difference coefficients and T of output (n, −o_y + j).
+    /// The sum coefficients, the difference coefficients and T of output (n, ±m).
     #[inline]
-    fn at(&self, n: usize, j: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
+    fn at(&self, n: usize, m: usize) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
         let stride = self.n_sum + self.n_diff + 1;
-        let c = &self.values[(n * self.columns + j) * stride..][..stride];
+        let c = &self.values[(n * self.columns + m) * stride..][..stride];
         let (mut cp, mut cm) = ([0.0; MAX_NB], [0.0; MAX_NB]);
         cp[..self.n_sum].copy_from_slice(&c[..self.n_sum]);
         cm[..self.n_diff].copy_from_slice(&c[self.n_sum..self.n_sum + self.n_diff]);
@@ -80,8 +82,8 @@ impl Outputs {
 
 impl TransformBound {
     /// Tabulates the output coefficients for the frames to come (a sequence: the same at
-    /// every time, 8 bytes × (the bases' functions + 1) an output kept; the same values
-    /// as computed at each frame).
+    /// every time, 8 bytes × (the bases' functions + 1) an output kept of m ≥ 0; the
+    /// same values as computed at each frame).
     pub fn keep_outputs(&mut self) {
         let o = (self.reach.0.o, self.reach.1.o);
         self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
@@ -103,9 +105,17 @@ impl TransformBound {
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
+        const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         kept.par_chunks_mut(columns.max(1))
             .enumerate()
             .for_each(|(n, line)| {
+                // Without the table, the line's coefficients once for ±m.
+                let of_line: Vec<_> = match outputs {
+                    Some(_) => Vec::new(),
+                    None => (0..=oy)
+                        .map(|m| coefficients_at(&self.fit, self.spec, depth, n as i64, m))
+                        .collect(),
+                };
                 let n = n as i64;
                 for (j, h) in line.iter_mut().enumerate() {
                     let m = j as i64 - oy;
@@ -119,8 +129,8 @@ impl TransformBound {
                         (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                     };
                     let (cp, cm, t) = match outputs {
-                        Some(o) => o.at(n as usize, j),
-                        None => coefficients_at(&self.fit, self.spec, depth, n, m),
+                        Some(o) => o.at(n as usize, m.unsigned_abs() as usize),
+                        None => of_line[m.unsigned_abs() as usize],
                     };
                     let zero_diff = n == 0 && m == 0;
                     // A slot's part times its output coefficient (`k` 2T for the B terms,
