@@ -521,7 +521,7 @@ impl SecondOrder {
         info: SecondOrderInfo,
     ) -> Self {
         // (The indices are distinct: one order, however sorted.)
-        comps.sort_unstable_by_key(|c| (c.n, c.m));
+        comps.par_sort_unstable_by_key(|c| (c.n, c.m));
         let mut lines = vec![0..0; 2 * nx + 1];
         let mut occupied = Vec::new();
         let mut start = 0;

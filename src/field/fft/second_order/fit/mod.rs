@@ -477,7 +477,7 @@ impl KernelFit {
         let estimate = |term: usize, sign: f64| {
             let (mut err2, mut tot2) = (0.0, 0.0);
             for (a, b, sp) in pairs(2 * term as u64 + 1, sign) {
-                let approx = fit.g(term, a, b, sp.qx, sp.qy) * sp.num;
+                let approx = fit.g(term, a, b, &sp) * sp.num;
                 let k = 0.25 * (sp.sep + sp.ns);
                 err2 += (0.25 * (sp.ns - approx)).powi(2);
                 tot2 += k * k;
@@ -494,12 +494,12 @@ impl KernelFit {
         fit
     }
 
-    /// G̃ of the sum (term 0) or difference (term 1) of two waves with output q.
-    pub fn g(&self, term: usize, a: &Component, b: &Component, qx: f64, qy: f64) -> f64 {
-        let qn = qx.hypot(qy);
-        let t = resonance_t(qn, self.depth);
+    /// G̃ of the sum (term 0) or difference (term 1) of two waves of split `sp` (its
+    /// output q and |q|).
+    pub fn g(&self, term: usize, a: &Component, b: &Component, sp: &Split) -> f64 {
+        let t = resonance_t(sp.qn, self.depth);
         let phi = self.bases.eval(a, b, self.s_ref, term, t);
-        let c = self.coefficients(term, self.hats(qn, qx, qy));
+        let c = self.coefficients(term, self.hats(sp.qn, sp.qx, sp.qy));
         (0..self.bases.len(term)).map(|l| c[l] * phi[l]).sum()
     }
 
@@ -560,10 +560,7 @@ impl KernelFit {
     ) -> (f64, Split) {
         let sp = split(a, b, sign, depth);
         let term = usize::from(sign < 0.0);
-        (
-            0.25 * (sp.sep + sp.num * self.g(term, a, b, sp.qx, sp.qy)),
-            sp,
-        )
+        (0.25 * (sp.sep + sp.num * self.g(term, a, b, &sp)), sp)
     }
 }
 
