@@ -162,7 +162,8 @@ pub fn split(a: &Component, b: &Component, sign: f64, depth: Option<f64>) -> Spl
     let (kxb, kyb, sb) = (sign * b.kx, sign * b.ky, sign * b.s);
     let dot = a.kx * kxb + a.ky * kyb;
     let (qx, qy) = (a.kx + kxb, a.ky + kyb);
-    let qn = qx.hypot(qy);
+    // (Not `hypot`: no overflow to guard against, at a fraction of its cost.)
+    let qn = (qx * qx + qy * qy).sqrt();
     let t = resonance_t(qn, depth);
     let bb = (dot - a.r * b.r) / (a.s * sb);
     let aa = a.q / a.s + b.q / sb;
