@@ -46,6 +46,7 @@
 //! the default `auto` takes the fitted method where the estimate is within its margin.
 
 use crate::spectrum::{Dispersion, Spectrum};
+use rayon::prelude::*;
 
 use super::Component;
 use sample::{Sampler, spectrum_sample, uniform};
@@ -60,6 +61,8 @@ const Q_NODES: usize = 24;
 pub(super) const ANGLE_NODES: usize = 1;
 /// Pairs drawn for the fit, and again for the error estimate.
 const FIT_PAIRS: usize = 60_000;
+/// The chunks of a term's draws summed apart (in parallel), then added in order.
+const FIT_CHUNKS: usize = 4;
 /// The deep-water sum basis: the exponents u of w_u(s) = (|s|/s_p)^u whose symmetric
 /// products (u ≤ v) it takes.
 const DEEP_EXPONENTS: [i32; 3] = [-1, 0, 1];
@@ -408,8 +411,9 @@ impl KernelFit {
         // The drawn pairs of draw stream `salt` of two different waves whose sum (`sign`
         // = 1) or difference (−1) falls on the grid, with the split of their kernel.
         let (waves, sampler) = (&waves[..], &sampler);
-        let pairs = move |salt: u64, sign: f64| {
-            (0..FIT_PAIRS).filter_map(move |t| {
+        let pairs = move |salt: u64, sign: f64, chunk: usize| {
+            let per = FIT_PAIRS.div_ceil(FIT_CHUNKS);
+            (chunk * per..((chunk + 1) * per).min(FIT_PAIRS)).filter_map(move |t| {
                 let (u, v) = uniform(t as u64, salt);
                 let (i, j) = (sampler.pick(u), sampler.pick(v));
                 if i == j {
@@ -420,40 +424,53 @@ impl KernelFit {
                 bounds.contains(sp.qx, sp.qy).then_some((a, b, sp))
             })
         };
-        // The two terms' normal equations, each summed in its draws' order (one task a
-        // term: the same sums at any thread count).
+        // The two terms' normal equations, each a sum of FIT_CHUNKS partial sums in their
+        // draws' order (a task a chunk of draws, added in chunk order: the same sums at any
+        // thread count).
         let solve = |term: usize, sign: f64| {
             let nb = bases.len(term);
             let dim = qn_count * na * nb;
-            let mut ata = vec![0.0; dim * dim];
-            let mut atb = vec![0.0; dim];
-            for (a, b, sp) in pairs(2 * term as u64, sign) {
-                let phi = bases.eval(a, b, s_ref, term, resonance_t(sp.qn, depth));
-                let h = hats2(&nodes, na, sp.qn, sp.qx, sp.qy);
-                // The functions of the output's nodes (one or two adjacent nodes of √|q|,
-                // a single angle node: the unknowns start .. start + n, in order).
-                const { assert!(ANGLE_NODES == 1, "adjacent nodes: one angle node") };
-                let mut val = [0.0f64; 2 * MAX_NB];
-                let (mut start, mut n) = (0, 0);
-                for &(node, hw) in h.iter().filter(|h| h.1 != 0.0) {
-                    if n == 0 {
-                        start = node * nb;
+            let normal = |chunk: usize| {
+                let mut ata = vec![0.0; dim * dim];
+                let mut atb = vec![0.0; dim];
+                for (a, b, sp) in pairs(2 * term as u64, sign, chunk) {
+                    let phi = bases.eval(a, b, s_ref, term, resonance_t(sp.qn, depth));
+                    let h = hats2(&nodes, na, sp.qn, sp.qx, sp.qy);
+                    // The functions of the output's nodes (one or two adjacent nodes of
+                    // √|q|, a single angle node: the unknowns start .. start + n, in
+                    // order).
+                    const { assert!(ANGLE_NODES == 1, "adjacent nodes: one angle node") };
+                    let mut val = [0.0f64; 2 * MAX_NB];
+                    let (mut start, mut n) = (0, 0);
+                    for &(node, hw) in h.iter().filter(|h| h.1 != 0.0) {
+                        if n == 0 {
+                            start = node * nb;
+                        }
+                        debug_assert_eq!(start + n, node * nb);
+                        for &p in phi.iter().take(nb) {
+                            val[n] = hw * p * sp.num;
+                            n += 1;
+                        }
                     }
-                    debug_assert_eq!(start + n, node * nb);
-                    for &p in phi.iter().take(nb) {
-                        val[n] = hw * p * sp.num;
-                        n += 1;
+                    // The lower triangle only: all that the Cholesky solve reads.
+                    for x in 0..n {
+                        atb[start + x] += val[x] * sp.ns;
+                        let row = (start + x) * dim + start;
+                        let vx = val[x];
+                        for (a, &vy) in ata[row..=row + x].iter_mut().zip(&val[..=x]) {
+                            *a += vx * vy;
+                        }
                     }
                 }
-                // The lower triangle only: all that the Cholesky solve reads.
-                for x in 0..n {
-                    atb[start + x] += val[x] * sp.ns;
-                    let row = (start + x) * dim + start;
-                    let vx = val[x];
-                    for (a, &vy) in ata[row..=row + x].iter_mut().zip(&val[..=x]) {
-                        *a += vx * vy;
-                    }
-                }
+                (ata, atb)
+            };
+            let parts: Vec<(Vec<f64>, Vec<f64>)> =
+                (0..FIT_CHUNKS).into_par_iter().map(normal).collect();
+            let mut parts = parts.into_iter();
+            let (mut ata, mut atb) = parts.next().expect("at least one chunk");
+            for (pa, pb) in parts {
+                ata.iter_mut().zip(&pa).for_each(|(a, p)| *a += p);
+                atb.iter_mut().zip(&pb).for_each(|(a, p)| *a += p);
             }
             let sol = solve_ridge(&mut ata, &mut atb, dim);
             let mut c = empty(term);
@@ -473,17 +490,23 @@ impl KernelFit {
             rel_rms_error: 0.0,
             depth,
         };
-        // The error estimate from draws independent of the fit's (a task a term, each
-        // summed in its draws' order).
+        // The error estimate from draws independent of the fit's (a task a chunk of a
+        // term's draws, each summed in its draws' order, the chunks added in order).
         let estimate = |term: usize, sign: f64| {
-            let (mut err2, mut tot2) = (0.0, 0.0);
-            for (a, b, sp) in pairs(2 * term as u64 + 1, sign) {
-                let approx = fit.g(term, a, b, &sp) * sp.num;
-                let k = 0.25 * (sp.sep + sp.ns);
-                err2 += (0.25 * (sp.ns - approx)).powi(2);
-                tot2 += k * k;
-            }
-            (err2, tot2)
+            let chunk = |c: usize| {
+                let (mut err2, mut tot2) = (0.0, 0.0);
+                for (a, b, sp) in pairs(2 * term as u64 + 1, sign, c) {
+                    let approx = fit.g(term, a, b, &sp) * sp.num;
+                    let k = 0.25 * (sp.sep + sp.ns);
+                    err2 += (0.25 * (sp.ns - approx)).powi(2);
+                    tot2 += k * k;
+                }
+                (err2, tot2)
+            };
+            let parts: Vec<(f64, f64)> = (0..FIT_CHUNKS).into_par_iter().map(chunk).collect();
+            parts
+                .into_iter()
+                .fold((0.0, 0.0), |acc, p| (acc.0 + p.0, acc.1 + p.1))
         };
         let (s, d) = rayon::join(|| estimate(0, 1.0), || estimate(1, -1.0));
         let (err2, tot2) = (s.0 + d.0, s.1 + d.1);
