@@ -464,14 +464,10 @@ impl KernelFit {
                 }
                 (ata, atb)
             };
-            let parts: Vec<(Vec<f64>, Vec<f64>)> =
-                (0..FIT_CHUNKS).into_par_iter().map(normal).collect();
-            let mut parts = parts.into_iter();
-            let (mut ata, mut atb) = parts.next().expect("at least one chunk");
-            for (pa, pb) in parts {
+            let (mut ata, mut atb) = in_chunks(normal, |(ata, atb), (pa, pb)| {
                 ata.iter_mut().zip(&pa).for_each(|(a, p)| *a += p);
                 atb.iter_mut().zip(&pb).for_each(|(a, p)| *a += p);
-            }
+            });
             let sol = solve_ridge(&mut ata, &mut atb, dim);
             let mut c = empty(term);
             for (node, row) in c.iter_mut().enumerate() {
@@ -503,10 +499,10 @@ impl KernelFit {
                 }
                 (err2, tot2)
             };
-            let parts: Vec<(f64, f64)> = (0..FIT_CHUNKS).into_par_iter().map(chunk).collect();
-            parts
-                .into_iter()
-                .fold((0.0, 0.0), |acc, p| (acc.0 + p.0, acc.1 + p.1))
+            in_chunks(chunk, |acc, p| {
+                acc.0 += p.0;
+                acc.1 += p.1;
+            })
         };
         let (s, d) = rayon::join(|| estimate(0, 1.0), || estimate(1, -1.0));
         let (err2, tot2) = (s.0 + d.0, s.1 + d.1);
@@ -586,6 +582,18 @@ impl KernelFit {
         let term = usize::from(sign < 0.0);
         (0.25 * (sp.sep + sp.num * self.g(term, a, b, &sp)), sp)
     }
+}
+
+/// The sum over the FIT_CHUNKS chunks of a term's draws of `part(chunk)`, the parts made
+/// in parallel and added by `add` in chunk order (the same sum at any thread count).
+fn in_chunks<T: Send>(part: impl Fn(usize) -> T + Sync, add: impl Fn(&mut T, T)) -> T {
+    let parts: Vec<T> = (0..FIT_CHUNKS).into_par_iter().map(&part).collect();
+    let mut parts = parts.into_iter();
+    let mut sum = parts.next().expect("at least one chunk");
+    for p in parts {
+        add(&mut sum, p);
+    }
+    sum
 }
 
 /// Solves (AᵀA + λI)x = Aᵀb by Cholesky, λ a small fraction of the mean diagonal (rows

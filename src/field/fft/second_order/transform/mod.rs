@@ -99,9 +99,8 @@ pub struct TransformBound {
     pool32: Pool<f32>,
     /// The transforms' first stages (py rows of the components' 2k_x + 1 kx columns).
     ones: Pool<f64>,
-    /// The components by kx row (row n + k_x): their indices, row r's from
-    /// `rows[r]` to `rows[r + 1]`.
-    by_row: Vec<u32>,
+    /// Where each kx row's waves start (row n + k_x): row r's are `comps[rows[r] ..
+    /// rows[r + 1]]`.
     rows: Vec<usize>,
     fit: KernelFit,
     /// What multiplies the product fields at each output kept, the same at every time:
@@ -132,9 +131,9 @@ impl TransformBound {
             .map(|c| 4.0 * c.rho * c.rho * self_kernels(c, depth).1)
             .sum();
         let w = (2 * reach.0.k + 1) as usize;
-        let comps: Vec<Wave> = comps.iter().map(Wave::from).collect();
-        let mut by_row: Vec<u32> = (0..comps.len() as u32).collect();
-        by_row.sort_by_key(|&i| comps[i as usize].n);
+        // The waves by kx row (a stable sort: each row's in the order given).
+        let mut comps: Vec<Wave> = comps.iter().map(Wave::from).collect();
+        comps.sort_by_key(|c| c.n);
         let mut rows = vec![0usize; w + 1];
         for c in &comps {
             rows[(i64::from(c.n) + reach.0.k) as usize + 1] += 1;
@@ -153,7 +152,6 @@ impl TransformBound {
             plan32: Plan::new(reach.0.len, reach.1.len),
             pool: Pool::default(),
             pool32: Pool::default(),
-            by_row,
             rows,
             ones: Pool::default(),
             fit,
@@ -260,10 +258,10 @@ impl TransformBound {
                 for row in rows.iter_mut() {
                     row.fill(zero);
                 }
-                for &ci in &self.by_row[self.rows[r]..self.rows[r + 1]] {
-                    let c = &self.comps[ci as usize];
+                let row_of = self.rows[r]..self.rows[r + 1];
+                for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
                     let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                    let (bi, v) = (b[ci as usize], f.of(c));
+                    let v = f.of(c);
                     let x = c.s.abs() / self.fit.s_ref;
                     for (l, row) in rows.iter_mut().enumerate() {
                         row[col] += bi * (v * x.powi(lo + l as i32));

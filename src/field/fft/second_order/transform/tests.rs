@@ -379,3 +379,48 @@ fn the_bound_waves_beyond_the_limit() {
         );
     }
 }
+
+#[test]
+fn the_output_coefficients_of_n_m_and_n_minus_m_are_the_same_bits() {
+    // The table and a single frame's gather hold the coefficients of m ≥ 0 only and read
+    // them for −m: that needs them to depend on |q| alone, to the bit (deep and finite
+    // depth, outputs across a 40×36 grid of unequal cells).
+    for depth in [None, Some(8.0)] {
+        let mut sets = vec![
+            "method=fft",
+            "spectrum=pierson-moskowitz",
+            "wind-speed=12",
+            "spectrum.spreading=hasselmann",
+            "size=40x36",
+            "extent=480x400",
+        ];
+        if depth.is_some() {
+            sets.push("depth=8");
+        }
+        let params = params_of(&sets);
+        let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+        let spec = params.grid_spec();
+        let setup = setup_at(spec, model.as_ref(), dispersion, 3, 0.0);
+        let kf = KernelFit::new(model.as_ref(), dispersion, Region::of(&setup), setup.dk());
+        let mut differing = 0;
+        for n in 0..20 {
+            for m in 1..18 {
+                let (cp, cm, t) = outputs::coefficients_at(&kf, spec, depth, n, m);
+                let (cp2, cm2, t2) = outputs::coefficients_at(&kf, spec, depth, n, -m);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                if bits(&cp) != bits(&cp2) || bits(&cm) != bits(&cm2) || t.to_bits() != t2.to_bits()
+                {
+                    differing += 1;
+                }
+            }
+        }
+        assert_eq!(
+            differing, 0,
+            "depth {depth:?}: outputs whose ±m coefficients differ"
+        );
+        // (Not trivially equal: the coefficients do vary with |q|.)
+        let (a, _, _) = outputs::coefficients_at(&kf, spec, depth, 1, 0);
+        let (b, _, _) = outputs::coefficients_at(&kf, spec, depth, 9, 7);
+        assert_ne!(a, b);
+    }
+}
