@@ -13,6 +13,8 @@
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
 //! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
 
+use std::ops::Range;
+
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 
@@ -27,6 +29,10 @@ use super::{
 };
 use crate::fastmath;
 use crate::grid::{GridSpec, signed_index};
+
+/// The bytes of first-stage fields a pass over y holds an output cell (the linear field
+/// holds about 17 at its peak; see [`TransformBound::passes`]).
+const PASS_BYTES_PER_CELL: usize = 8;
 
 /// The single-wave factors of the products.
 #[derive(Clone, Copy, PartialEq)]
@@ -234,12 +240,19 @@ impl TransformBound {
     /// The first stages of a factor's fields' inverse transforms, one field for each
     /// exponent e of `lo ..= hi` (index e − lo): Σ over the components of
     /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
-    /// row transformed along ky where it lies (rows of zeros stay zero): 2k_x + 1 rows of
-    /// [`Self::row_stride`], every exponent's row of a kx row built at once (each
-    /// component read once). The second stage reads them across the rows, a few values
-    /// of y at a time.
-    fn stage_one(&self, b: &[C64], f: Factor, (lo, hi): (i32, i32)) -> Vec<Vec<C64>> {
-        let (py, stride) = (self.plan.py, self.row_stride());
+    /// row transformed along ky where it lies (rows of zeros stay zero), its columns `ys`
+    /// kept: 2k_x + 1 rows of [`Self::row_stride`], every exponent's row of a kx row built
+    /// at once (each component read once). The second stage reads them across the rows, a
+    /// few values of y at a time.
+    fn stage_one(
+        &self,
+        b: &[C64],
+        f: Factor,
+        (lo, hi): (i32, i32),
+        ys: Range<usize>,
+    ) -> Vec<Vec<C64>> {
+        let (py, stride) = (self.plan.py, self.row_stride(ys.len()));
+        let whole = ys.len() == py;
         let w = self.rows.len() - 1;
         let ne = (hi - lo + 1).max(0) as usize;
         let zero = C64::new(0.0, 0.0);
@@ -252,25 +265,40 @@ impl TransformBound {
             }
         }
         let inv_y = &*self.plan.inv_y;
+        // A kx row's rows of py: built, then transformed.
+        let build = |r: usize, rows: &mut [&mut [C64]], scratch: &mut Vec<C64>| {
+            for row in rows.iter_mut() {
+                row.fill(zero);
+            }
+            let row_of = self.rows[r]..self.rows[r + 1];
+            for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
+                let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                let v = f.of(c);
+                let x = c.s.abs() / self.fit.s_ref;
+                for (l, row) in rows.iter_mut().enumerate() {
+                    row[col] += bi * (v * x.powi(lo + l as i32));
+                }
+            }
+            for row in rows.iter_mut() {
+                if row.iter().any(|v| *v != zero) {
+                    inv_y.process_with_scratch(row, scratch);
+                }
+            }
+        };
         tasks.into_par_iter().enumerate().for_each_init(
-            || vec![zero; inv_y.get_inplace_scratch_len()],
-            |scratch, (r, mut rows)| {
-                for row in rows.iter_mut() {
-                    row.fill(zero);
-                }
-                let row_of = self.rows[r]..self.rows[r + 1];
-                for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
-                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                    let v = f.of(c);
-                    let x = c.s.abs() / self.fit.s_ref;
-                    for (l, row) in rows.iter_mut().enumerate() {
-                        row[col] += bi * (v * x.powi(lo + l as i32));
-                    }
-                }
-                for row in rows {
-                    let row = &mut row[..py];
-                    if row.iter().any(|v| *v != zero) {
-                        inv_y.process_with_scratch(row, scratch);
+            || (vec![zero; inv_y.get_inplace_scratch_len()], Vec::new()),
+            |(scratch, whole_rows), (r, mut rows)| {
+                if whole {
+                    // In place.
+                    let mut at: Vec<&mut [C64]> = rows.iter_mut().map(|r| &mut r[..py]).collect();
+                    build(r, &mut at, scratch);
+                } else {
+                    // Built whole beside them, the columns kept copied.
+                    whole_rows.resize(ne * py, zero);
+                    let mut at: Vec<&mut [C64]> = whole_rows.chunks_exact_mut(py).collect();
+                    build(r, &mut at, scratch);
+                    for (row, from) in rows.iter_mut().zip(whole_rows.chunks_exact(py)) {
+                        row[..ys.len()].copy_from_slice(&from[ys.clone()]);
                     }
                 }
             },
@@ -278,36 +306,34 @@ impl TransformBound {
         fields
     }
 
-    /// The distance between the kx rows of a first stage: py and a cache line, so that
-    /// the second stage's reads down a column of them do not share one cache set.
-    fn row_stride(&self) -> usize {
-        self.plan.py + 4
+    /// The distance between the kx rows of a first stage of `len` columns: `len` and a
+    /// cache line, so that the second stage's reads down a column of them do not share
+    /// one cache set.
+    fn row_stride(&self, len: usize) -> usize {
+        len + 4
     }
 
     /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
     /// row, and the row of each field of `fs` and `gs` (the fields of the terms'
-    /// factors, each transformed once): the transforms' first stage whole
-    /// ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just before
-    /// their products, so that no whole field is held. The same values as the whole
-    /// fields' transforms.
+    /// factors, each of its exponents lo ..= hi, index e − lo): the transforms' first stage ([`Self::stage_one`]), the second (along kx)
+    /// a few rows of y at a time, just before their products, so that no whole field is
+    /// held. The first stages of a range of y at a time ([`Self::passes`]: each pass
+    /// transforms them whole and keeps its range). The same values as the whole fields'
+    /// transforms.
     fn each_cell<T: Real>(
         &self,
         b: &[C64],
-        fs: Factor,
-        gs: Factor,
+        fs: (Factor, (i32, i32)),
+        gs: (Factor, (i32, i32)),
         acc: &mut Acc<T>,
         add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
         const ROWS: usize = 4;
-        let px = self.plan.px;
+        let (px, py) = (self.plan.px, self.plan.py);
         let kx = self.reach.0.k;
-        // A factor's fields: weighted by every power (|s|/s_p)^e of the bases' exponents
-        // lo ..= hi (index e − lo).
-        let (lo, hi) = self.fit.bases.exponents();
-        let fields = |f| self.stage_one(b, f, (lo, hi));
-        let f_one = fields(fs);
-        let g_one = if gs == fs { Vec::new() } else { fields(gs) };
-        let g_src = if gs == fs { &f_one } else { &g_one };
+        let same = gs == fs;
+        let count = |(_, (lo, hi)): (Factor, (i32, i32))| (hi - lo + 1).max(0) as usize;
+        let ne = count(fs) + if same { 0 } else { count(gs) };
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
         let chunk = px * ROWS;
@@ -324,12 +350,11 @@ impl TransformBound {
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
         let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
-        // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
-        // after another's): gathered from its first stage, then transformed along kx.
-        let stride = self.row_stride();
+        // The rows j0 .. j0 + nj of each field of `ones` (of `len` columns) into `rows` (a
+        // field's nj rows after another's): gathered from its first stage, then
+        // transformed along kx.
         let rows_of = |ones: &[Vec<C64>],
-                       j0: usize,
-                       nj: usize,
+                       (j0, nj, len): (usize, usize, usize),
                        rows: &mut Vec<C64>,
                        scratch: &mut Vec<C64>| {
             rows.resize(ones.len() * nj * px, zero);
@@ -341,7 +366,7 @@ impl TransformBound {
                 }
                 // Kx row r = n + k_x (n = −k_x ..= k_x) into column n, wrapped (px >
                 // 2k_x + o_x: the wrapped indices never meet).
-                for (r, from) in one.chunks_exact(stride).enumerate() {
+                for (r, from) in one.chunks_exact(self.row_stride(len)).enumerate() {
                     let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
                     for (jj, &v) in from[j0..j0 + nj].iter().enumerate() {
                         block[jj * px + col] = v;
@@ -352,33 +377,53 @@ impl TransformBound {
                 }
             }
         };
-        let same = gs == fs;
-        tasks.into_par_iter().enumerate().for_each_init(
-            || (Vec::new(), Vec::new(), Vec::new()),
-            |(fr, gr, scratch), (c, mut out)| {
-                let j0 = c * ROWS;
-                let nj = out[0].len() / px;
-                rows_of(&f_one, j0, nj, fr, scratch);
-                if !same {
-                    rows_of(g_src, j0, nj, gr, scratch);
-                }
-                let gr = if same { &*fr } else { &*gr };
-                let (nf, ng) = (f_one.len(), g_src.len());
-                for jj in 0..nj {
-                    let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
-                    let fv: [&[C64]; POWERS] =
-                        std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
-                    let gv: [&[C64]; POWERS] =
-                        std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
-                    let mut rows: Vec<&mut [Complex<T>]> = out
-                        .iter_mut()
-                        .map(|o| &mut o[jj * px..(jj + 1) * px])
-                        .collect();
-                    add(&mut rows, &fv, &gv);
-                }
-            },
-        );
-        self.ones.give_all(f_one.into_iter().chain(g_one));
+        let per_pass = tasks.len().div_ceil(self.passes(ne)).max(1);
+        let mut y0 = 0;
+        while !tasks.is_empty() {
+            let rest = tasks.split_off(per_pass.min(tasks.len()));
+            let now = std::mem::replace(&mut tasks, rest);
+            let ys = y0..(y0 + now.len() * ROWS).min(py);
+            y0 = ys.end;
+            let fields = |(f, e)| self.stage_one(b, f, e, ys.clone());
+            let f_one = fields(fs);
+            let g_one = if same { Vec::new() } else { fields(gs) };
+            let g_src = if same { &f_one } else { &g_one };
+            now.into_par_iter().enumerate().for_each_init(
+                || (Vec::new(), Vec::new(), Vec::new()),
+                |(fr, gr, scratch), (c, mut out)| {
+                    let nj = out[0].len() / px;
+                    let at_rows = (c * ROWS, nj, ys.len());
+                    rows_of(&f_one, at_rows, fr, scratch);
+                    if !same {
+                        rows_of(g_src, at_rows, gr, scratch);
+                    }
+                    let gr = if same { &*fr } else { &*gr };
+                    let (nf, ng) = (f_one.len(), g_src.len());
+                    for jj in 0..nj {
+                        let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
+                        let fv: [&[C64]; POWERS] =
+                            std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
+                        let gv: [&[C64]; POWERS] =
+                            std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
+                        let mut rows: Vec<&mut [Complex<T>]> = out
+                            .iter_mut()
+                            .map(|o| &mut o[jj * px..(jj + 1) * px])
+                            .collect();
+                        add(&mut rows, &fv, &gv);
+                    }
+                },
+            );
+            self.ones.give_all(f_one.into_iter().chain(g_one));
+        }
+    }
+
+    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields: as few as
+    /// hold at most [`PASS_BYTES_PER_CELL`] bytes an output cell of them at once (each
+    /// pass transforms the first stages whole again).
+    fn passes(&self, ne: usize) -> usize {
+        let held = ne * (self.rows.len() - 1) * self.row_stride(self.plan.py) * size_of::<C64>();
+        let cap = PASS_BYTES_PER_CELL * self.spec.nx * self.spec.ny;
+        held.div_ceil(cap.max(1)).clamp(1, self.plan.py)
     }
 
     /// The unordered pairs (self-pairs included) whose sum, and whose difference, falls
@@ -491,7 +536,8 @@ impl TransformBound {
         let mut acc: Acc<T> = (0..=groups).map(|_| pool.take(px * py)).collect();
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            self.each_cell(b, f, f, &mut acc, |c, p, _| {
+            let fe = (f, (lo, bases.exponents().1));
+            self.each_cell(b, fe, fe, &mut acc, |c, p, _| {
                 if f == Factor::V {
                     // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
                     // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
@@ -533,9 +579,18 @@ impl TransformBound {
         pool.give_all(transformed);
         if finite {
             let mut sa_acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
+            // (The B terms' arrays left over are not held through the S·A terms.)
+            pool.clear();
+            // S·A = Q_i + Q_j ± ((Q/s)_i s_j + s_i (Q/s)_j) (+ in the sum term, − in the
+            // difference), each with its mirror (the expansion is symmetric in a ↔ 2m − a).
+            // With x = |s|/s_p, (Q/s)·x^u is Q·x^{u−1}/s_p and s·x^v is s_p·x^{v+1}: the
+            // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
+            // give both products (the s_p cancel).
+            let e = (lo, bases.exponents().1);
             for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
                 // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
                 // mirror (the expansion is symmetric in a ↔ 2m − a).
+                let (f, g) = ((f, e), (g, e));
                 self.each_cell(b, f, g, &mut sa_acc, |c, pf, pg| {
                     for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
                         for &(w, u, v) in &f.monomials {
@@ -553,6 +608,7 @@ impl TransformBound {
                     }
                 });
             }
+            self.ones.clear();
             let sa: Acc<T> = sa_acc.into_iter().map(transform).collect();
             self.gather(&mut kept, &sa, &layout, false);
         }
