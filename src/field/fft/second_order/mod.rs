@@ -132,15 +132,25 @@ pub fn kernel_minus(a: &Component, b: &Component, depth: Option<f64>) -> f64 {
         Some(d) => km * tanh(km * d),
         None => km,
     };
-    let rr = a.r * b.r;
-    let sm = a.s - b.s;
+    kernel_minus_at([a.kx, a.ky, a.r, a.s, a.q], [b.kx, b.ky, b.r, b.s, b.q], tm)
+}
+
+/// K⁻ of two different waves (kx, ky, R, s, Q each, as a [`Component`] holds them) whose
+/// difference k_a − k_b has T = `tm` ([`fit::resonance_t`] of its norm).
+#[inline]
+pub fn kernel_minus_at(a: [f64; 5], b: [f64; 5], tm: f64) -> f64 {
+    let [ax, ay, ar, a_s, aq] = a;
+    let [bx, by, br, bs, bq] = b;
+    let dot = ax * bx + ay * by;
+    let rr = ar * br;
+    let sm = a_s - bs;
     let den = sm * sm - tm;
     let d_minus = if den != 0.0 {
-        (sm * (b.s * a.q - a.s * b.q) + 2.0 * sm * sm * (dot + rr)) / den
+        (sm * (bs * aq - a_s * bq) + 2.0 * sm * sm * (dot + rr)) / den
     } else {
         0.0
     };
-    0.25 * ((d_minus - (dot + rr)) / (a.s * b.s) + a.r + b.r)
+    0.25 * ((d_minus - (dot + rr)) / (a_s * bs) + ar + br)
 }
 
 /// K⁺_ii (Stokes' ½k in deep water) and K⁻_ii (the set-down; 0 in deep water) of one wave.

@@ -10,14 +10,15 @@
 //! water and down to about 0.1 λp of depth (see docs/methods.md for its error and cost).
 //!
 //! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over the components (b_i = a_i e^{i(φ_i − ω_i t)})
-//! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); the diagonal
-//! of the difference terms (q = 0) is replaced by the exact set-down Σ a_i² K⁻_ii.
+//! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); those nearest
+//! q = 0 are their exact pair sums ([`exact`]: the set-down Σ a_i² K⁻_ii at q = 0).
 
 use std::ops::Range;
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 
+use exact::Exact;
 use grid::{Plan, Pool, Reach};
 use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
@@ -113,6 +114,8 @@ pub struct TransformBound {
     /// tabulated once for a sequence of frames ([`Self::keep_outputs`]), else computed
     /// at each output of the frame.
     outputs: Option<Outputs>,
+    /// The outputs nearest q = 0, whose difference terms are their pair sums.
+    exact: Exact,
     spec: GridSpec,
 }
 
@@ -147,8 +150,10 @@ impl TransformBound {
         for r in 0..w {
             rows[r + 1] += rows[r];
         }
+        let exact = Exact::new(&comps, reach, (spec, depth), fit.s_ref);
         Self {
             outputs: None,
+            exact,
             spec,
             setdown,
             comps,
@@ -613,8 +618,9 @@ impl TransformBound {
             self.gather(&mut kept, &sa, &layout, false);
         }
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
-        // the grid), with the set-down at q = 0.
-        let (setdown, oy) = (self.setdown, ox_oy.1);
+        // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).
+        let oy = ox_oy.1;
+        let exact = self.exact.values(&self.comps, b, self.setdown);
         let norm = 0.25 / (px * py) as f64;
         half.data
             .par_chunks_mut(ny)
@@ -622,11 +628,15 @@ impl TransformBound {
             .enumerate()
             .for_each(|(n, (line, sums))| {
                 debug_assert!(on_grid(n as i64, nx));
+                // This line's exact outputs (in the order of n, then m).
+                let from = exact.partition_point(|e| e.0 < n as i64);
+                let to = exact.partition_point(|e| e.0 <= n as i64);
+                let exact = &exact[from..to];
                 for (j, &h) in sums.iter().enumerate() {
                     let m = j as i64 - oy;
                     let mut h = h * norm;
-                    if n == 0 && m == 0 {
-                        h += C64::new(setdown, 0.0);
+                    if let Some(&(_, _, e)) = exact.iter().find(|e| e.1 == m) {
+                        h += e;
                     }
                     line[m.rem_euclid(ny as i64) as usize] +=
                         Complex::new(h.re as f32, h.im as f32);
@@ -635,6 +645,7 @@ impl TransformBound {
     }
 }
 
+mod exact;
 mod grid;
 mod outputs;
 mod products;

@@ -22,14 +22,20 @@ pub(super) fn coefficients_at(
     n: i64,
     m: i64,
 ) -> ([f64; MAX_NB], [f64; MAX_NB], f64) {
+    let (qn, qx, qy, t) = output_t(spec, depth, n, m);
+    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
+    (cp, cm, t)
+}
+
+/// |q|, q and T(|q|) of output (n, m).
+#[inline]
+pub(super) fn output_t(spec: GridSpec, depth: Option<f64>, n: i64, m: i64) -> (f64, f64, f64, f64) {
     let tau = std::f64::consts::TAU;
     let qx = tau * n as f64 / spec.extent_x_m;
     let qy = tau * m as f64 / spec.extent_y_m;
     // (Not `hypot`: no overflow to guard against here, at a fraction of its cost.)
     let qn = (qx * qx + qy * qy).sqrt();
-    let t = resonance_t(qn, depth);
-    let (cp, cm) = fit.output_coefficients(qn, qx, qy, t);
-    (cp, cm, t)
+    (qn, qx, qy, resonance_t(qn, depth))
 }
 
 /// The output coefficients of the kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y),
@@ -132,17 +138,18 @@ impl TransformBound {
                         Some(o) => o.at(n as usize, m.unsigned_abs() as usize),
                         None => of_line[m.unsigned_abs() as usize],
                     };
-                    let zero_diff = n == 0 && m == 0;
+                    // (The difference terms nearest q = 0 are their pairs', [`Exact`].)
+                    let exact_diff = t <= self.exact.t_max;
                     // A slot's part times its output coefficient (`k` 2T for the B terms,
                     // 1 for the S·A terms).
                     let weighted = |v: C64, p: Option<Part>, k: f64| match p {
                         Some(Part::Sum(l)) => v * (k * cp[l]),
-                        Some(Part::Diff(m)) if !zero_diff => v * (k * cm[m]),
+                        Some(Part::Diff(m)) if !exact_diff => v * (k * cm[m]),
                         _ => C64::new(0.0, 0.0),
                     };
                     if b_terms {
                         let (s, d) = unpack(&accs[0]);
-                        *h = s + if zero_diff { C64::new(0.0, 0.0) } else { d };
+                        *h = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
                         for (f, slot) in accs[1..].iter().zip(&layout.slots) {
                             let (s, d) = unpack(f);
                             *h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
