@@ -13,7 +13,7 @@
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); those nearest
 //! q = 0 are their exact pair sums ([`exact`]: the set-down Σ a_i² K⁻_ii at q = 0).
 
-use std::ops::Range;
+use std::f64::consts::TAU;
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
@@ -245,19 +245,23 @@ impl TransformBound {
     /// The first stages of a factor's fields' inverse transforms, one field for each
     /// exponent e of `lo ..= hi` (index e − lo): Σ over the components of
     /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
-    /// row transformed along ky where it lies (rows of zeros stay zero), its columns `ys`
-    /// kept: 2k_x + 1 rows of [`Self::row_stride`], every exponent's row of a kx row built
-    /// at once (each component read once). The second stage reads them across the rows, a
-    /// few values of y at a time.
+    /// row transformed along ky where it lies (rows of zeros stay zero): 2k_x + 1 rows of
+    /// [`Self::row_stride`], every exponent's row of a kx row built at once (each
+    /// component read once). Of pass p of `passes` (a divisor P of py), the values at
+    /// y = P·j + p, j < py/P: X[Pj + p] = Σ_m (x_m e^{2πi m p/py}) e^{2πi m j/(py/P)},
+    /// the twiddled values folded onto m mod py/P and transformed at that length (one pass:
+    /// the whole transform). The second stage reads them across the rows, a few values of
+    /// j at a time.
     fn stage_one(
         &self,
         b: &[C64],
         f: Factor,
         (lo, hi): (i32, i32),
-        ys: Range<usize>,
+        (p, passes): (usize, usize),
     ) -> Vec<Vec<C64>> {
-        let (py, stride) = (self.plan.py, self.row_stride(ys.len()));
-        let whole = ys.len() == py;
+        let py = self.plan.py;
+        let len = py / passes;
+        let stride = self.row_stride(len);
         let w = self.rows.len() - 1;
         let ne = (hi - lo + 1).max(0) as usize;
         let zero = C64::new(0.0, 0.0);
@@ -266,44 +270,45 @@ impl TransformBound {
         let mut tasks: Vec<Vec<&mut [C64]>> = (0..w).map(|_| Vec::with_capacity(ne)).collect();
         for field in fields.iter_mut() {
             for (row, task) in field.chunks_exact_mut(stride).zip(tasks.iter_mut()) {
-                task.push(row);
+                task.push(&mut row[..len]);
             }
         }
-        let inv_y = &*self.plan.inv_y;
-        // A kx row's rows of py: built, then transformed.
-        let build = |r: usize, rows: &mut [&mut [C64]], scratch: &mut Vec<C64>| {
-            for row in rows.iter_mut() {
-                row.fill(zero);
-            }
-            let row_of = self.rows[r]..self.rows[r + 1];
-            for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
-                let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                let v = f.of(c);
-                let x = c.s.abs() / self.fit.s_ref;
-                for (l, row) in rows.iter_mut().enumerate() {
-                    row[col] += bi * (v * x.powi(lo + l as i32));
-                }
-            }
-            for row in rows.iter_mut() {
-                if row.iter().any(|v| *v != zero) {
-                    inv_y.process_with_scratch(row, scratch);
-                }
-            }
+        let short;
+        let inv = if passes == 1 {
+            &*self.plan.inv_y
+        } else {
+            short = rustfft::FftPlanner::new().plan_fft_inverse(len);
+            &*short
+        };
+        // e^{2πi m p/py} of each column m (none in one pass).
+        let twiddle: Vec<C64> = match passes {
+            1 => Vec::new(),
+            _ => (0..py)
+                .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
+                .collect(),
         };
         tasks.into_par_iter().enumerate().for_each_init(
-            || (vec![zero; inv_y.get_inplace_scratch_len()], Vec::new()),
-            |(scratch, whole_rows), (r, mut rows)| {
-                if whole {
-                    // In place.
-                    let mut at: Vec<&mut [C64]> = rows.iter_mut().map(|r| &mut r[..py]).collect();
-                    build(r, &mut at, scratch);
-                } else {
-                    // Built whole beside them, the columns kept copied.
-                    whole_rows.resize(ne * py, zero);
-                    let mut at: Vec<&mut [C64]> = whole_rows.chunks_exact_mut(py).collect();
-                    build(r, &mut at, scratch);
-                    for (row, from) in rows.iter_mut().zip(whole_rows.chunks_exact(py)) {
-                        row[..ys.len()].copy_from_slice(&from[ys.clone()]);
+            || vec![zero; inv.get_inplace_scratch_len()],
+            |scratch, (r, mut rows)| {
+                for row in rows.iter_mut() {
+                    row.fill(zero);
+                }
+                let row_of = self.rows[r]..self.rows[r + 1];
+                for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
+                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                    let bi = match passes {
+                        1 => bi,
+                        _ => bi * twiddle[col],
+                    };
+                    let v = f.of(c);
+                    let x = c.s.abs() / self.fit.s_ref;
+                    for (l, row) in rows.iter_mut().enumerate() {
+                        row[col % len] += bi * (v * x.powi(lo + l as i32));
+                    }
+                }
+                for row in rows {
+                    if row.iter().any(|v| *v != zero) {
+                        inv.process_with_scratch(row, scratch);
                     }
                 }
             },
@@ -320,11 +325,11 @@ impl TransformBound {
 
     /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
     /// row, and the row of each field of `fs` and `gs` (the fields of the terms'
-    /// factors, each of its exponents lo ..= hi, index e − lo): the transforms' first stage ([`Self::stage_one`]), the second (along kx)
-    /// a few rows of y at a time, just before their products, so that no whole field is
-    /// held. The first stages of a range of y at a time ([`Self::passes`]: each pass
-    /// transforms them whole and keeps its range). The same values as the whole fields'
-    /// transforms.
+    /// factors, each of its exponents lo ..= hi, index e − lo): the transforms' first
+    /// stage ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
+    /// before their products, so that no whole field is held. The first stages of every
+    /// P-th row of y at a time ([`Self::passes`]). The same values as the whole fields'
+    /// transforms (to rounding; the same bits in one pass).
     fn each_cell<T: Real>(
         &self,
         b: &[C64],
@@ -338,28 +343,36 @@ impl TransformBound {
         let kx = self.reach.0.k;
         let same = gs == fs;
         let count = |(_, (lo, hi)): (Factor, (i32, i32))| (hi - lo + 1).max(0) as usize;
-        let ne = count(fs) + if same { 0 } else { count(gs) };
+        let passes = self.passes(count(fs) + if same { 0 } else { count(gs) });
+        let len = py / passes;
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
-        let chunk = px * ROWS;
-        // Each task's rows of every accumulator.
-        let mut tasks: Vec<Vec<&mut [Complex<T>]>> = Vec::new();
+        // Each pass's tasks (ROWS rows of y each, y = P·j + p), each row holding the row
+        // of every accumulator.
+        type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
+        let mut by_y: Vec<Rows<T>> = (0..py).map(|_| Vec::with_capacity(acc.len())).collect();
         for a in acc.iter_mut() {
-            for (c, rows) in a.chunks_mut(chunk).enumerate() {
-                if tasks.len() <= c {
-                    tasks.push(Vec::with_capacity(MAX_NB + 1));
-                }
-                tasks[c].push(rows);
+            for (y, row) in a.chunks_exact_mut(px).enumerate() {
+                by_y[y].push(row);
             }
+        }
+        let mut work: Vec<Vec<Vec<Rows<T>>>> = (0..passes)
+            .map(|_| {
+                (0..len.div_ceil(ROWS))
+                    .map(|_| Vec::with_capacity(ROWS))
+                    .collect()
+            })
+            .collect();
+        for (y, rows) in by_y.into_iter().enumerate() {
+            work[y % passes][y / passes / ROWS].push(rows);
         }
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
         let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
-        // The rows j0 .. j0 + nj of each field of `ones` (of `len` columns) into `rows` (a
-        // field's nj rows after another's): gathered from its first stage, then
-        // transformed along kx.
+        // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
+        // after another's): gathered from its first stage, then transformed along kx.
         let rows_of = |ones: &[Vec<C64>],
-                       (j0, nj, len): (usize, usize, usize),
+                       (j0, nj): (usize, usize),
                        rows: &mut Vec<C64>,
                        scratch: &mut Vec<C64>| {
             rows.resize(ones.len() * nj * px, zero);
@@ -382,39 +395,28 @@ impl TransformBound {
                 }
             }
         };
-        let per_pass = tasks.len().div_ceil(self.passes(ne)).max(1);
-        let mut y0 = 0;
-        while !tasks.is_empty() {
-            let rest = tasks.split_off(per_pass.min(tasks.len()));
-            let now = std::mem::replace(&mut tasks, rest);
-            let ys = y0..(y0 + now.len() * ROWS).min(py);
-            y0 = ys.end;
-            let fields = |(f, e)| self.stage_one(b, f, e, ys.clone());
+        for (p, tasks) in work.into_iter().enumerate() {
+            let fields = |(f, e)| self.stage_one(b, f, e, (p, passes));
             let f_one = fields(fs);
             let g_one = if same { Vec::new() } else { fields(gs) };
             let g_src = if same { &f_one } else { &g_one };
-            now.into_par_iter().enumerate().for_each_init(
+            tasks.into_par_iter().enumerate().for_each_init(
                 || (Vec::new(), Vec::new(), Vec::new()),
                 |(fr, gr, scratch), (c, mut out)| {
-                    let nj = out[0].len() / px;
-                    let at_rows = (c * ROWS, nj, ys.len());
+                    let at_rows = (c * ROWS, out.len());
                     rows_of(&f_one, at_rows, fr, scratch);
                     if !same {
                         rows_of(g_src, at_rows, gr, scratch);
                     }
                     let gr = if same { &*fr } else { &*gr };
-                    let (nf, ng) = (f_one.len(), g_src.len());
-                    for jj in 0..nj {
+                    let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
+                    for (jj, rows) in out.iter_mut().enumerate() {
                         let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
                         let fv: [&[C64]; POWERS] =
                             std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
                         let gv: [&[C64]; POWERS] =
                             std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
-                        let mut rows: Vec<&mut [Complex<T>]> = out
-                            .iter_mut()
-                            .map(|o| &mut o[jj * px..(jj + 1) * px])
-                            .collect();
-                        add(&mut rows, &fv, &gv);
+                        add(rows, &fv, &gv);
                     }
                 },
             );
@@ -422,13 +424,16 @@ impl TransformBound {
         }
     }
 
-    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields: as few as
-    /// hold at most [`PASS_BYTES_PER_CELL`] bytes an output cell of them at once (each
-    /// pass transforms the first stages whole again).
+    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields: the least
+    /// divisor of py that holds at most [`PASS_BYTES_PER_CELL`] bytes an output cell of
+    /// them at once (each pass folds the components onto its share of the columns and
+    /// transforms that: the passes together cost about one whole transform).
     fn passes(&self, ne: usize) -> usize {
-        let held = ne * (self.rows.len() - 1) * self.row_stride(self.plan.py) * size_of::<C64>();
+        let py = self.plan.py;
+        let held = ne * (self.rows.len() - 1) * self.row_stride(py) * size_of::<C64>();
         let cap = PASS_BYTES_PER_CELL * self.spec.nx * self.spec.ny;
-        held.div_ceil(cap.max(1)).clamp(1, self.plan.py)
+        let least = held.div_ceil(cap.max(1)).clamp(1, py);
+        (least..=py).find(|d| py % d == 0).unwrap_or(py)
     }
 
     /// The unordered pairs (self-pairs included) whose sum, and whose difference, falls
