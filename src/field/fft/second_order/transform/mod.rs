@@ -11,7 +11,7 @@
 //!
 //! With A_f(x) = Σ_i f(k_i) b_i e^{ik_i·x} over the components (b_i = a_i e^{i(φ_i − ω_i t)})
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); those nearest
-//! q = 0 are their exact pair sums ([`exact`]: the set-down Σ a_i² K⁻_ii at q = 0).
+//! q = 0 are their exact pair sums (`exact.rs`; the set-down Σ a_i² K⁻_ii at q = 0).
 
 use std::f64::consts::TAU;
 
