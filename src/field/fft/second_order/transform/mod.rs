@@ -24,6 +24,10 @@ use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
 
 use super::fit::{Box2, KernelFit, MAX_NB, POWERS, Region};
+
+/// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
+/// terms' fields of Q and 1 reach one below and one above them).
+const FIELDS: usize = POWERS + 1;
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -42,8 +46,8 @@ enum Factor {
     X,
     Y,
     V,
-    /// Q/s, Q, 1 (the S·A terms of finite depth).
-    U,
+    /// Q, 1 (the S·A terms of finite depth; Q/s and s are theirs at the exponent below
+    /// and above).
     W1,
     W0,
 }
@@ -82,7 +86,6 @@ impl Factor {
             Factor::X => c.kx / c.s,
             Factor::Y => c.ky / c.s,
             Factor::V => c.s,
-            Factor::U => c.q / c.s,
             Factor::W1 => c.q,
             Factor::W0 => 1.0,
         }
@@ -131,7 +134,7 @@ impl TransformBound {
         let (nx, ny) = (spec.nx, spec.ny);
         let (lo, hi) = fit.bases.exponents();
         assert!(
-            (hi - lo + 1) as usize <= POWERS && fit.bases.len(0).max(fit.bases.len(1)) <= MAX_NB,
+            (hi - lo + 2) as usize <= FIELDS && fit.bases.len(0).max(fit.bases.len(1)) <= MAX_NB,
             "the fit's bases exceed the arrays of a row's fields or a cell's groups"
         );
         let reach = reach_of(&comps, nx, ny);
@@ -412,9 +415,9 @@ impl TransformBound {
                     let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
                     for (jj, rows) in out.iter_mut().enumerate() {
                         let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
-                        let fv: [&[C64]; POWERS] =
+                        let fv: [&[C64]; FIELDS] =
                             std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
-                        let gv: [&[C64]; POWERS] =
+                        let gv: [&[C64]; FIELDS] =
                             std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
                         add(rows, &fv, &gv);
                     }
@@ -596,28 +599,34 @@ impl TransformBound {
             // With x = |s|/s_p, (Q/s)·x^u is Q·x^{u−1}/s_p and s·x^v is s_p·x^{v+1}: the
             // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
             // give both products (the s_p cancel).
-            let e = (lo, bases.exponents().1);
-            for (f, g, sign) in [(Factor::W1, Factor::W0, 1.0), (Factor::U, Factor::V, -1.0)] {
-                // Difference: S·A = Q_i + Q_j − (Q/s)_i s_j − s_i (Q/s)_j, each with its
-                // mirror (the expansion is symmetric in a ↔ 2m − a).
-                let (f, g) = ((f, e), (g, e));
-                self.each_cell(b, f, g, &mut sa_acc, |c, pf, pg| {
-                    for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
-                        for &(w, u, v) in &f.monomials {
-                            let (u, v) = (at(u), at(v));
-                            let rows = pf[u].iter().zip(pg[v]).zip(pf[v].iter().zip(pg[u]));
-                            for (c, ((fu, gv), (fv, gu))) in c[g].iter_mut().zip(rows) {
-                                *part(c, im) += T::of(w * ((fu * gv).re + (fv * gu).re));
-                            }
+            let hi = bases.exponents().1;
+            let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
+            self.each_cell(b, q_e, one_e, &mut sa_acc, |c, q, one| {
+                // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
+                let q_at = |e: i32| q[(e - lo + 1) as usize];
+                let one_at = |e: i32| one[(e - lo) as usize];
+                for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
+                    for &(w, u, v) in &f.monomials {
+                        let plain =
+                            (q_at(u).iter().zip(one_at(v))).zip(q_at(v).iter().zip(one_at(u)));
+                        let shifted = (q_at(u - 1).iter().zip(one_at(v + 1)))
+                            .zip(q_at(v - 1).iter().zip(one_at(u + 1)));
+                        for (cell, (((a, b), (d, e)), ((f, g), (h, i)))) in
+                            c[g].iter_mut().zip(plain.zip(shifted))
+                        {
+                            let p = (a * b).re + (d * e).re + (f * g).re + (h * i).re;
+                            *part(cell, im) += T::of(w * p);
                         }
                     }
-                    let mut sum = Vec::new();
-                    for (m, (t, &(g, im))) in terms.iter().zip(&layout.diff).enumerate() {
-                        let (f, g_) = (&pf[at(0)..], &pg[at(0)..]);
-                        power_term(c[g], f, g_, t, m, (2.0 * sign, im), &mut sum);
-                    }
-                });
-            }
+                }
+                let mut sum = Vec::new();
+                for (m, (t, &(g, im))) in terms.iter().zip(&layout.diff).enumerate() {
+                    // Q_a 1_{2m−a}, then (Q/s)_a s_{2m−a}: Q_{a−1} 1_{2m−a+1}.
+                    let (q0, q1) = (&q[at(0) + 1..], &q[at(0)..]);
+                    power_term(c[g], q0, &one[at(0)..], t, m, (2.0, im), &mut sum);
+                    power_term(c[g], q1, &one[at(1)..], t, m, (-2.0, im), &mut sum);
+                }
+            });
             self.ones.clear();
             let sa: Acc<T> = sa_acc.into_iter().map(transform).collect();
             self.gather(&mut kept, &sa, &layout, false);
