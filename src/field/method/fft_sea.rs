@@ -144,6 +144,13 @@ impl HeightMethod for FftSea {
                     let fit = TransformBound::fit_for(&setup, &so);
                     let e = fit.rel_rms_error;
                     let pct = |x: f64| format!("{:.2} %", 100.0 * x);
+                    // Why a fit falls short: at finite depth, the near-resonant pairs.
+                    let cause = match setup.dispersion {
+                        crate::spectrum::Dispersion::Finite { .. } => {
+                            " (shallow water's near-resonant pairs)"
+                        }
+                        crate::spectrum::Dispersion::Deep => "",
+                    };
                     if e <= AUTO_MAX_ESTIMATE {
                         let why = format!(
                             "auto: the fitted kernels' estimated error {} is within {}",
@@ -153,8 +160,8 @@ impl HeightMethod for FftSea {
                         (fitted(so, fit), "fitted", Some(why))
                     } else {
                         let why = format!(
-                            "auto: the fitted kernels' estimated error {} exceeds {} (shallow \
-                             water's near-resonant pairs): the exact pairs",
+                            "auto: the fitted kernels' estimated error {} exceeds {}{cause}: \
+                             the exact pairs",
                             pct(e),
                             pct(AUTO_MAX_ESTIMATE)
                         );
