@@ -497,3 +497,26 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
         assert!(r.is_finite() && r > 0.0, "{line}");
     }
 }
+
+#[test]
+fn auto_says_why_it_keeps_the_exact_pairs_and_names_shallow_water_only_at_depth() {
+    // Where the fit's estimate exceeds the margin, auto keeps the pairs and says why: at
+    // 10 m for shallow water's near-resonant pairs; in deep water (every wave of a 256²
+    // grid over 2048 m) without naming shallow water.
+    for (extra, shallow) in [("spectrum.nonlinear_cutoff=inf", false), ("depth=10", true)] {
+        let sets: Vec<&str> = BASE
+            .iter()
+            .copied()
+            .chain(["nonlinear=second-order", extra])
+            .collect();
+        let info = synthesize(&params(&sets))
+            .unwrap()
+            .info
+            .second_order
+            .unwrap();
+        assert_eq!(info.method.as_deref(), Some("pairs"), "{extra}");
+        let why = info.method_reason.expect("auto gives its reason");
+        assert!(why.contains("exceeds"), "{extra}: {why}");
+        assert_eq!(why.contains("shallow water"), shallow, "{extra}: {why}");
+    }
+}

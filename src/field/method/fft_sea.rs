@@ -15,6 +15,7 @@ use crate::field::fft::second_order::transform::TransformBound;
 use crate::field::fft::second_order::{Cutoff, SecondOrder, SecondOrderInfo};
 use crate::field::fft::{self, Amplitudes};
 use crate::grid::Grid;
+use crate::spectrum::Dispersion;
 
 /// Tessendorf's FFT sea: Gaussian random amplitudes of the spectrum, dispersion in time,
 /// one inverse FFT.
@@ -144,13 +145,6 @@ impl HeightMethod for FftSea {
                     let fit = TransformBound::fit_for(&setup, &so);
                     let e = fit.rel_rms_error;
                     let pct = |x: f64| format!("{:.2} %", 100.0 * x);
-                    // Why a fit falls short: at finite depth, the near-resonant pairs.
-                    let cause = match setup.dispersion {
-                        crate::spectrum::Dispersion::Finite { .. } => {
-                            " (shallow water's near-resonant pairs)"
-                        }
-                        crate::spectrum::Dispersion::Deep => "",
-                    };
                     if e <= AUTO_MAX_ESTIMATE {
                         let why = format!(
                             "auto: the fitted kernels' estimated error {} is within {}",
@@ -159,6 +153,11 @@ impl HeightMethod for FftSea {
                         );
                         (fitted(so, fit), "fitted", Some(why))
                     } else {
+                        // Why a fit falls short: at finite depth, the near-resonant pairs.
+                        let cause = match setup.dispersion {
+                            Dispersion::Finite { .. } => " (shallow water's near-resonant pairs)",
+                            Dispersion::Deep => "",
+                        };
                         let why = format!(
                             "auto: the fitted kernels' estimated error {} exceeds {}{cause}: \
                              the exact pairs",

@@ -12,6 +12,22 @@ pub(super) fn params_of(sets: &[&str]) -> crate::config::Params {
     apply(crate::config::Params::default(), &a).unwrap()
 }
 
+/// A small physical sea for the exact checks: PM 12 m/s, Hasselmann, over 480 × 400 m
+/// on `size` (e.g. "size=40x36"), deep or at `depth` m.
+pub(super) fn small_sea(size: &str, depth: Option<f64>) -> crate::config::Params {
+    let depth = depth.map(|d| format!("depth={d}"));
+    let mut sets = vec![
+        "method=fft",
+        "spectrum=pierson-moskowitz",
+        "wind-speed=12",
+        "spectrum.spreading=hasselmann",
+        size,
+        "extent=480x400",
+    ];
+    sets.extend(depth.as_deref());
+    params_of(&sets)
+}
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }

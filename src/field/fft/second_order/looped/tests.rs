@@ -1,5 +1,5 @@
 use super::*;
-use crate::field::fft::second_order::tests::params_of;
+use crate::field::fft::second_order::tests::{params_of, small_sea};
 
 fn max_abs(z: &[C64]) -> f64 {
     z.iter().fold(0.0, |m, v| m.max(v.norm()))
@@ -13,18 +13,7 @@ fn the_bins_give_the_pair_sum_at_any_time() {
     // same pairs kept and dropped.
     const TOL: f64 = 1e-6;
     for depth in [None, Some(8.0)] {
-        let mut sets = vec![
-            "method=fft",
-            "spectrum=pierson-moskowitz",
-            "wind-speed=12",
-            "spectrum.spreading=hasselmann",
-            "size=48x40",
-            "extent=480x400",
-        ];
-        if depth.is_some() {
-            sets.push("depth=8");
-        }
-        let params = params_of(&sets);
+        let params = small_sea("size=48x40", depth);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let period = 20.0;
         let setup_at = |t: f64| SpectrumSetup {

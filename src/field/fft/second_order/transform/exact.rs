@@ -6,11 +6,12 @@
 //! 10⁻¹² in the accumulators moved the outputs of the first ring (|q| = Δk) by their own
 //! size over 2048 m, and at 4096 and 8192 m the rounding alone did (the sea's Hs 9.0 m
 //! instead of the pair sum's 5.4 m). The change fell below 10⁻⁶ of an output from
-//! T(|q|) ≈ 0.06 s_p² on at 10, 19 and 40 m and every extent tried. So where T(|q|) ≤
+//! T(|q|) ≈ 0.06 s_p² on at 10, 19 and 40 m over 2048 to 8192 m. So where T(|q|) ≤
 //! [`EXACT_T`]·s_p² the difference term is the pair sum itself: output q has at most one
 //! partner j for each wave i (k_j = k_i − q), M pairs an output. At q = 0 that sum is
 //! the set-down of each wave. In deep water the fitted outputs keep their accuracy down
-//! to the first ring (tested at 8192 m), and only q = 0 is exact (the set-down, 0).
+//! to the first ring (0.59 % rms against the pair sum at 8192 m, measured), and only
+//! q = 0 is exact (the set-down, 0).
 
 use rayon::prelude::*;
 
@@ -27,6 +28,9 @@ pub(super) const EXACT_T: f64 = 0.1;
 pub(super) struct Exact {
     /// T at or below which an output is exact: [`EXACT_T`]·s_p², 0 in deep water (q = 0).
     pub(super) t_max: f64,
+    /// The set-down Σ |b_i|² K⁻_ii = Σ 4ρ_i² K⁻_ii, the exact value at q = 0 (the same at
+    /// every time).
+    setdown: f64,
     /// The exact outputs kept (n ≥ 0, m): n, m, T.
     outputs: Vec<(i64, i64, f64)>,
     /// The index of the wave at (n, m) of the waves' box |n| ≤ k_x, |m| ≤ k_y (row
@@ -37,12 +41,13 @@ pub(super) struct Exact {
 
 impl Exact {
     /// The exact outputs among those kept (|n|, |m| ≤ o of `reach`) of a grid `spec` at
-    /// `depth`, s_p = `s_ref`, and the index of the waves `comps` (within k of `reach`).
+    /// `depth`, s_p = `s_ref`, the index of the waves `comps` (within k of `reach`), and
+    /// their set-down.
     pub(super) fn new(
         comps: &[Wave],
         reach: (Reach, Reach),
         (spec, depth): (GridSpec, Option<f64>),
-        s_ref: f64,
+        (s_ref, setdown): (f64, f64),
     ) -> Self {
         let (kx, ky) = (reach.0.k, reach.1.k);
         let t_max = match depth {
@@ -79,6 +84,7 @@ impl Exact {
         }
         Self {
             t_max,
+            setdown,
             outputs,
             at,
             k: (kx, ky),
@@ -99,15 +105,15 @@ impl Exact {
 
     /// The exact difference term at each exact output, (n, m, value) with the half
     /// spectrum's weight: Σ over the ordered pairs (i, j) of k_i − k_j = q of
-    /// b_i conj(b_j) K⁻_ij, and at q = 0 the set-down Σ |b_i|² K⁻_ii (`setdown`). Each
+    /// b_i conj(b_j) K⁻_ij, and at q = 0 the set-down Σ |b_i|² K⁻_ii (held). Each
     /// output's sum in the waves' order (the same bits at any thread count).
-    pub(super) fn values(&self, comps: &[Wave], b: &[C64], setdown: f64) -> Vec<(i64, i64, C64)> {
+    pub(super) fn values(&self, comps: &[Wave], b: &[C64]) -> Vec<(i64, i64, C64)> {
         let input = |c: &Wave| [c.kx, c.ky, c.s * c.s, c.s, c.q];
         self.outputs
             .par_iter()
             .map(|&(n, m, t)| {
                 if n == 0 && m == 0 {
-                    return (n, m, C64::new(setdown, 0.0));
+                    return (n, m, C64::new(self.setdown, 0.0));
                 }
                 let mut sum = C64::new(0.0, 0.0);
                 for (i, c) in comps.iter().enumerate() {

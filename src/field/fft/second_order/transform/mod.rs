@@ -17,6 +17,7 @@ use std::f64::consts::TAU;
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
 
 use exact::Exact;
 use grid::{Plan, Pool, Reach};
@@ -24,10 +25,6 @@ use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
 
 use super::fit::{Box2, KernelFit, MAX_NB, POWERS, Region};
-
-/// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
-/// terms' fields of Q and 1 reach one below and one above them).
-const FIELDS: usize = POWERS + 1;
 use super::{
     C64, Component, Cutoff, HalfSpectrum, SecondOrder, SecondOrderInfo, SpectrumSetup, on_grid,
     self_kernels,
@@ -35,9 +32,41 @@ use super::{
 use crate::fastmath;
 use crate::grid::{GridSpec, signed_index};
 
+/// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
+/// terms' fields of Q and 1 reach one below and one above them).
+const FIELDS: usize = POWERS + 1;
+
 /// The bytes of first-stage fields a pass over y holds an output cell (the linear field
 /// holds about 17 at its peak; see [`TransformBound::passes`]).
 const PASS_BYTES_PER_CELL: usize = 8;
+
+/// Pass p of P over the rows of y of the first stages (P a divisor of py): the values
+/// at y = P·j + p, j < py/P, X[Pj + p] = Σ_m (x_m e^{2πi m p/py}) e^{2πi m j/(py/P)}: the
+/// components twiddled, folded onto m mod py/P and transformed at that length (one pass:
+/// the whole transform, untwiddled).
+struct Pass<'a> {
+    len: usize,
+    /// e^{2πi m p/py} of each column m (empty in one pass).
+    twiddle: Vec<C64>,
+    /// The inverse transform of `len`.
+    inv: &'a dyn Fft<f64>,
+}
+
+impl<'a> Pass<'a> {
+    fn new(p: usize, passes: usize, py: usize, inv: &'a dyn Fft<f64>) -> Self {
+        let twiddle = match passes {
+            1 => Vec::new(),
+            _ => (0..py)
+                .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
+                .collect(),
+        };
+        Self {
+            len: py / passes,
+            twiddle,
+            inv,
+        }
+    }
+}
 
 /// The single-wave factors of the products.
 #[derive(Clone, Copy, PartialEq)]
@@ -98,9 +127,6 @@ pub struct TransformBound {
     depth: Option<f64>,
     /// The reach of the waves on each axis (the padded grid and the outputs kept).
     reach: (Reach, Reach),
-    /// The exact set-down Σ 4ρ_i² K⁻_ii that replaces the difference terms at q = 0 (it
-    /// does not depend on the time).
-    setdown: f64,
     plan: Plan<f64>,
     /// The forward transforms of single-precision accumulators (deep water).
     plan32: Plan<f32>,
@@ -153,12 +179,11 @@ impl TransformBound {
         for r in 0..w {
             rows[r + 1] += rows[r];
         }
-        let exact = Exact::new(&comps, reach, (spec, depth), fit.s_ref);
+        let exact = Exact::new(&comps, reach, (spec, depth), (fit.s_ref, setdown));
         Self {
             outputs: None,
             exact,
             spec,
-            setdown,
             comps,
             depth,
             reach,
@@ -250,20 +275,11 @@ impl TransformBound {
     /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
     /// row transformed along ky where it lies (rows of zeros stay zero): 2k_x + 1 rows of
     /// [`Self::row_stride`], every exponent's row of a kx row built at once (each
-    /// component read once). Of pass p of `passes` (a divisor P of py), the values at
-    /// y = P·j + p, j < py/P: X[Pj + p] = Σ_m (x_m e^{2πi m p/py}) e^{2πi m j/(py/P)},
-    /// the twiddled values folded onto m mod py/P and transformed at that length (one pass:
-    /// the whole transform). The second stage reads them across the rows, a few values of
-    /// j at a time.
-    fn stage_one(
-        &self,
-        b: &[C64],
-        f: Factor,
-        (lo, hi): (i32, i32),
-        (p, passes): (usize, usize),
-    ) -> Vec<Vec<C64>> {
+    /// component read once), of the rows of y of `pass` ([`Pass`]). The second stage
+    /// reads them across the rows, a few values of j at a time.
+    fn stage_one(&self, b: &[C64], f: Factor, (lo, hi): (i32, i32), pass: &Pass) -> Vec<Vec<C64>> {
         let py = self.plan.py;
-        let len = py / passes;
+        let (len, inv) = (pass.len, pass.inv);
         let stride = self.row_stride(len);
         let w = self.rows.len() - 1;
         let ne = (hi - lo + 1).max(0) as usize;
@@ -276,20 +292,6 @@ impl TransformBound {
                 task.push(&mut row[..len]);
             }
         }
-        let short;
-        let inv = if passes == 1 {
-            &*self.plan.inv_y
-        } else {
-            short = rustfft::FftPlanner::new().plan_fft_inverse(len);
-            &*short
-        };
-        // e^{2πi m p/py} of each column m (none in one pass).
-        let twiddle: Vec<C64> = match passes {
-            1 => Vec::new(),
-            _ => (0..py)
-                .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
-                .collect(),
-        };
         tasks.into_par_iter().enumerate().for_each_init(
             || vec![zero; inv.get_inplace_scratch_len()],
             |scratch, (r, mut rows)| {
@@ -299,9 +301,9 @@ impl TransformBound {
                 let row_of = self.rows[r]..self.rows[r + 1];
                 for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
                     let col = i64::from(c.m).rem_euclid(py as i64) as usize;
-                    let bi = match passes {
-                        1 => bi,
-                        _ => bi * twiddle[col],
+                    let bi = match pass.twiddle.get(col) {
+                        Some(&t) => bi * t,
+                        None => bi,
                     };
                     let v = f.of(c);
                     let x = c.s.abs() / self.fit.s_ref;
@@ -398,8 +400,12 @@ impl TransformBound {
                 }
             }
         };
+        // The transform of a pass's share of the columns, planned once.
+        let short = (passes > 1).then(|| FftPlanner::new().plan_fft_inverse(len));
+        let inv = short.as_deref().unwrap_or(&*self.plan.inv_y);
         for (p, tasks) in work.into_iter().enumerate() {
-            let fields = |(f, e)| self.stage_one(b, f, e, (p, passes));
+            let pass = Pass::new(p, passes, py, inv);
+            let fields = |(f, e)| self.stage_one(b, f, e, &pass);
             let f_one = fields(fs);
             let g_one = if same { Vec::new() } else { fields(gs) };
             let g_src = if same { &f_one } else { &g_one };
@@ -522,7 +528,7 @@ impl TransformBound {
         };
         // The fields of exponent e are at index e − lo.
         let bases = &self.fit.bases;
-        let lo = bases.exponents().0;
+        let (lo, hi) = bases.exponents();
         let at = |e: i32| (e - lo) as usize;
         let terms: Vec<Vec<(usize, f64)>> = (0..=bases.diff_powers)
             .map(|m| expansion(m).collect())
@@ -549,7 +555,7 @@ impl TransformBound {
         let mut acc: Acc<T> = (0..=groups).map(|_| pool.take(px * py)).collect();
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
-            let fe = (f, (lo, bases.exponents().1));
+            let fe = (f, (lo, hi));
             self.each_cell(b, fe, fe, &mut acc, |c, p, _| {
                 if f == Factor::V {
                     // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
@@ -599,7 +605,6 @@ impl TransformBound {
             // With x = |s|/s_p, (Q/s)·x^u is Q·x^{u−1}/s_p and s·x^v is s_p·x^{v+1}: the
             // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
             // give both products (the s_p cancel).
-            let hi = bases.exponents().1;
             let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
             self.each_cell(b, q_e, one_e, &mut sa_acc, |c, q, one| {
                 // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
@@ -634,7 +639,7 @@ impl TransformBound {
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
         // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).
         let oy = ox_oy.1;
-        let exact = self.exact.values(&self.comps, b, self.setdown);
+        let exact = self.exact.values(&self.comps, b);
         let norm = 0.25 / (px * py) as f64;
         half.data
             .par_chunks_mut(ny)

@@ -1,7 +1,7 @@
 use super::*;
 use crate::field::fft::InverseFft2;
 use crate::field::fft::second_order::add_plane;
-use crate::field::fft::second_order::tests::params_of;
+use crate::field::fft::second_order::tests::{params_of, small_sea};
 use crate::field::fft::second_order::{Cutoff, SecondOrder};
 use rustfft::num_complex::Complex32;
 
@@ -42,18 +42,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
     // finite depth, at two times.
     const TOL: f64 = 1e-5;
     for depth in [None, Some(8.0)] {
-        let mut sets = vec![
-            "method=fft",
-            "spectrum=pierson-moskowitz",
-            "wind-speed=12",
-            "spectrum.spreading=hasselmann",
-            "size=40x36",
-            "extent=480x400",
-        ];
-        if depth.is_some() {
-            sets.push("depth=8");
-        }
-        let params = params_of(&sets);
+        let params = small_sea("size=40x36", depth);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         for t in [0.0, 3.7] {
@@ -420,18 +409,7 @@ fn the_output_coefficients_of_n_m_and_n_minus_m_are_the_same_bits() {
     // them for −m: that needs them to depend on |q| alone, to the bit (deep and finite
     // depth, outputs across a 40×36 grid of unequal cells).
     for depth in [None, Some(8.0)] {
-        let mut sets = vec![
-            "method=fft",
-            "spectrum=pierson-moskowitz",
-            "wind-speed=12",
-            "spectrum.spreading=hasselmann",
-            "size=40x36",
-            "extent=480x400",
-        ];
-        if depth.is_some() {
-            sets.push("depth=8");
-        }
-        let params = params_of(&sets);
+        let params = small_sea("size=40x36", depth);
         let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
         let spec = params.grid_spec();
         let setup = setup_at(spec, model.as_ref(), dispersion, 3, 0.0);
