@@ -305,10 +305,14 @@ impl TransformBound {
                         Some(&t) => bi * t,
                         None => bi,
                     };
-                    let v = f.of(c);
+                    // f(k_i)·x^e·b_i of e = lo, lo + 1, …: one multiplication by x an
+                    // exponent.
                     let x = c.s.abs() / self.fit.s_ref;
-                    for (l, row) in rows.iter_mut().enumerate() {
-                        row[col % len] += bi * (v * x.powi(lo + l as i32));
+                    let mut w = bi * (f.of(c) * x.powi(lo));
+                    let at = col % len;
+                    for row in rows.iter_mut() {
+                        row[at] += w;
+                        w *= x;
                     }
                 }
                 for row in rows {
