@@ -141,22 +141,24 @@ impl<T: FftNum> Plan<T> {
         }
     }
 
-    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows
-    /// of `a` that `wanted` names transformed by `fa` (the others left as they are):
-    /// `data` (a rows of b) becomes b rows of a.
+    /// Rows of `b` transformed by `fb` (rows of zeros stay zero; None: transformed
+    /// already), transposed, the rows of `a` that `wanted` names transformed by `fa` (the
+    /// others left as they are): `data` (a rows of b) becomes b rows of a.
     fn two_d(
         data: &mut Vec<Complex<T>>,
         (a, b): (usize, usize),
-        (fa, fb): (&dyn Fft<T>, &dyn Fft<T>),
+        (fa, fb): (&dyn Fft<T>, Option<&dyn Fft<T>>),
         wanted: &(dyn Fn(usize) -> bool + Sync),
         pool: &Pool<T>,
     ) {
         let zero = Complex::zero();
-        data.par_chunks_mut(b).for_each(|row| {
-            if row.iter().any(|v| *v != zero) {
-                fb.process(row);
-            }
-        });
+        if let Some(fb) = fb {
+            data.par_chunks_mut(b).for_each(|row| {
+                if row.iter().any(|v| *v != zero) {
+                    fb.process(row);
+                }
+            });
+        }
         let src = &*data;
         let mut t = pool.take_any(a * b);
         // Blocked: each task writes TILE rows of t, reading TILE consecutive values of
@@ -185,23 +187,30 @@ impl<T: FftNum> Plan<T> {
     /// Spectrum (px rows of py, kx by row) → field (py rows of px, y by row).
     pub(super) fn inverse(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
         let (fa, fb) = (&*self.inv_x, &*self.inv_y);
-        Self::two_d(data, (self.px, self.py), (fa, fb), &|_| true, pool);
+        Self::two_d(data, (self.px, self.py), (fa, Some(fb)), &|_| true, pool);
     }
 
     /// Field (py rows of px) → spectrum (px rows of py).
     pub(super) fn forward(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
-        self.forward_rows(data, &|_| true, pool);
+        let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
+        Self::two_d(data, (self.py, self.px), (fa, Some(fb)), &|_| true, pool);
     }
 
-    /// Field (py rows of px) → spectrum (px rows of py), on the kx rows `wanted` names
-    /// (the other rows hold partial sums).
-    pub(super) fn forward_rows(
+    /// The forward transform along x of one row of px (`scratch` its scratch).
+    pub(super) fn forward_x(&self, row: &mut [Complex<T>], scratch: &mut Vec<Complex<T>>) {
+        scratch.resize(self.fwd_x.get_inplace_scratch_len(), Complex::zero());
+        self.fwd_x.process_with_scratch(row, scratch);
+    }
+
+    /// Rows of y transformed along x already ([`Self::forward_x`]; py rows of px) →
+    /// spectrum (px rows of py), on the kx rows `wanted` names (the other rows hold the
+    /// transforms along x).
+    pub(super) fn forward_y_rows(
         &self,
         data: &mut Vec<Complex<T>>,
         wanted: &(dyn Fn(usize) -> bool + Sync),
         pool: &Pool<T>,
     ) {
-        let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
-        Self::two_d(data, (self.py, self.px), (fa, fb), wanted, pool);
+        Self::two_d(data, (self.py, self.px), (&*self.fwd_y, None), wanted, pool);
     }
 }

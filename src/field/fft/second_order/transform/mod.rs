@@ -68,6 +68,9 @@ impl<'a> Pass<'a> {
     }
 }
 
+/// A factor's first-stage fields: its exponents lo ..= hi.
+type Fields = (Factor, (i32, i32));
+
 /// The single-wave factors of the products.
 #[derive(Clone, Copy, PartialEq)]
 enum Factor {
@@ -338,20 +341,23 @@ impl TransformBound {
     /// stage ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
     /// before their products, so that no whole field is held. The first stages of every
     /// P-th row of y at a time ([`Self::passes`]). The same values as the whole fields'
-    /// transforms (to rounding; the same bits in one pass).
+    /// transforms (to rounding; the same bits in one pass). With `last`, the terms' last
+    /// products: each row of the accumulators is then transformed along x (the first
+    /// stage of their forward transforms, while the row is at hand).
     fn each_cell<T: Real>(
         &self,
         b: &[C64],
-        fs: (Factor, (i32, i32)),
-        gs: (Factor, (i32, i32)),
+        (fs, gs): (Fields, Fields),
         acc: &mut Acc<T>,
+        last: bool,
         add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
+        let (plan, _) = T::forward(self);
         const ROWS: usize = 4;
         let (px, py) = (self.plan.px, self.plan.py);
         let kx = self.reach.0.k;
         let same = gs == fs;
-        let count = |(_, (lo, hi)): (Factor, (i32, i32))| (hi - lo + 1).max(0) as usize;
+        let count = |(_, (lo, hi)): Fields| (hi - lo + 1).max(0) as usize;
         let passes = self.passes(count(fs) + if same { 0 } else { count(gs) });
         let len = py / passes;
         let zero = C64::new(0.0, 0.0);
@@ -414,8 +420,8 @@ impl TransformBound {
             let g_one = if same { Vec::new() } else { fields(gs) };
             let g_src = if same { &f_one } else { &g_one };
             tasks.into_par_iter().enumerate().for_each_init(
-                || (Vec::new(), Vec::new(), Vec::new()),
-                |(fr, gr, scratch), (c, mut out)| {
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(fr, gr, scratch, scratch_t), (c, mut out)| {
                     let at_rows = (c * ROWS, out.len());
                     rows_of(&f_one, at_rows, fr, scratch);
                     if !same {
@@ -430,6 +436,11 @@ impl TransformBound {
                         let gv: [&[C64]; FIELDS] =
                             std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
                         add(rows, &fv, &gv);
+                        if last {
+                            for row in rows.iter_mut() {
+                                plan.forward_x(row, scratch_t);
+                            }
+                        }
                     }
                 },
             );
@@ -527,7 +538,7 @@ impl TransformBound {
         let ox = self.reach.0.o;
         let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
         let transform = |mut acc: Vec<Complex<T>>| {
-            plan.forward_rows(&mut acc, &kept_row, pool);
+            plan.forward_y_rows(&mut acc, &kept_row, pool);
             acc
         };
         // The fields of exponent e are at index e − lo.
@@ -560,7 +571,8 @@ impl TransformBound {
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         for &(f, sign) in types {
             let fe = (f, (lo, hi));
-            self.each_cell(b, fe, fe, &mut acc, |c, p, _| {
+            // (V's products are the last of the B terms.)
+            self.each_cell(b, (fe, fe), &mut acc, f == Factor::V, |c, p, _| {
                 if f == Factor::V {
                     // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
                     // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
@@ -610,7 +622,7 @@ impl TransformBound {
             // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
             // give both products (the s_p cancel).
             let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
-            self.each_cell(b, q_e, one_e, &mut sa_acc, |c, q, one| {
+            self.each_cell(b, (q_e, one_e), &mut sa_acc, true, |c, q, one| {
                 // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
                 let q_at = |e: i32| q[(e - lo + 1) as usize];
                 let one_at = |e: i32| one[(e - lo) as usize];
