@@ -32,6 +32,37 @@ pub(crate) fn polar_line_on(
     });
 }
 
+/// [`polar_line_on`] on the elements `range` of a line of `ny` only (`r`, `phi` of its
+/// length): the same values as theirs in a whole line, bit for bit.
+///
+/// # Panics
+/// If `r` or `phi` differ in length from `range`, or `range` ends beyond `ny`.
+pub(crate) fn polar_range_on(
+    isa: Isa,
+    (seed, n, sign): (u64, i64, i64),
+    ny: usize,
+    range: std::ops::Range<usize>,
+    r: &mut [f64],
+    phi: &mut [f64],
+) {
+    assert!(
+        r.len() == range.len() && phi.len() == range.len() && range.end <= ny,
+        "polar_range: r and phi must cover the range of the line"
+    );
+    let prefix = rng::polar_prefix(seed, sign.wrapping_mul(n));
+    with_words(sign, ny, ny, |words| {
+        let words = &words[range];
+        match isa {
+            Isa::Plain => polar_run_fused(isa, prefix, words, r, phi),
+            // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2 => unsafe { super::avx2::polar_run(prefix, words, r, phi) },
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx512 => polar_run_fused(isa, prefix, words, r, phi),
+        }
+    });
+}
+
 /// The words `rng::polar_word(sign·m_i)`, `m_i = signed_index(i, ny)`, of the `len`
 /// elements of a line, kept per thread for the last two `(sign, ny, len)` asked for (a
 /// field's lines come in pairs of signs). A quarter of the hashing is in these words,

@@ -33,8 +33,9 @@ use crate::fastmath;
 use crate::grid::{Grid, GridSpec};
 pub use crate::grid::{is_resolved, signed_index};
 use crate::rng::gaussian_polar;
-use crate::simd::{Isa, multiversion, polar_line_on, sin_cos_line_on};
+use crate::simd::{Isa, multiversion, polar_line_on, polar_range_on, sin_cos_line_on};
 use crate::spectrum::{Dispersion, LineQuery, PairOut, Spectrum};
+use std::ops::Range;
 
 /// Everything that fixes the random spectrum of one field.
 #[derive(Clone, Copy)]
@@ -228,8 +229,13 @@ where
 
 /// What `visit(n, buffers)` makes of each kx line n < `lines` (n ≥ 0, at most the half
 /// spectrum's nx/2 + 1 lines), in line order, with the line's E|h̃0(±k)|² in the buffers
-/// as [`build_lines`] gives them: the lines' passes that need no half spectrum.
-pub(crate) fn visit_lines<T, V>(setup: &SpectrumSetup, lines: usize, visit: V) -> Vec<T>
+/// at the indices of `cols` ([`window`]; elsewhere unset), the values [`build_lines`]
+/// gives them: the lines' passes that need no half spectrum.
+pub(crate) fn visit_lines<T, V>(
+    setup: &SpectrumSetup,
+    (lines, cols): (usize, &[Range<usize>; 2]),
+    visit: V,
+) -> Vec<T>
 where
     T: Send,
     V: Fn(i64, &mut LineBuffers) -> T + Sync,
@@ -241,11 +247,43 @@ where
         .map_init(
             || LineBuffers::new(&ky),
             |buf, n| {
-                line_variances(setup, n as i64, buf);
+                for r in cols.iter().filter(|r| !r.is_empty()) {
+                    line_variances_in(setup, n as i64, buf, r.clone());
+                }
                 visit(n as i64, buf)
             },
         )
         .collect()
+}
+
+/// The indices of a line of `ny` (FFT order) with |m| < `cols`: m = 0 ..< cols, then
+/// the negative m from −(cols − 1) (every index when they cover the line).
+pub(crate) fn window(ny: usize, cols: usize) -> [Range<usize>; 2] {
+    if cols == 0 {
+        [0..0, ny..ny]
+    } else if 2 * cols > ny {
+        [0..ny, ny..ny]
+    } else {
+        [0..cols, ny + 1 - cols..ny]
+    }
+}
+
+/// E|h̃0(±k)|² of the indices `r` of kx line n into `buf.pa`, `buf.pb` (the values of
+/// [`line_variances`] there).
+fn line_variances_in(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers, r: Range<usize>) {
+    let (dkx, dky) = setup.dk();
+    let kx = setup.wavevector(n, 0).0;
+    let q = LineQuery {
+        kx,
+        ky: &buf.ky[r.clone()],
+        dkx,
+        dky,
+    };
+    let out = PairOut {
+        a: &mut buf.pa[r.clone()],
+        b: &mut buf.pb[r],
+    };
+    setup.spectrum.amplitude_variance_pair_line(&q, out);
 }
 
 /// The ky of each index of a line (FFT order).
@@ -316,6 +354,27 @@ fn draw_line(setup: &SpectrumSetup, isa: Isa, n: i64, buf: &mut LineBuffers) {
     polar_line_on(isa, setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
     scale_draws(isa, &buf.pa, &mut buf.ra, &mut buf.pha);
     scale_draws(isa, &buf.pb, &mut buf.rb, &mut buf.phb);
+}
+
+/// [`draw_line`] at the indices `cols` of the line only ([`window`]; elsewhere unset):
+/// the same values there, bit for bit.
+fn draw_line_in(
+    setup: &SpectrumSetup,
+    isa: Isa,
+    n: i64,
+    buf: &mut LineBuffers,
+    cols: &[Range<usize>; 2],
+) {
+    let ny = setup.spec.ny;
+    for r in cols.iter().filter(|r| !r.is_empty()) {
+        let r = r.clone();
+        let (ra, pha) = (&mut buf.ra[r.clone()], &mut buf.pha[r.clone()]);
+        polar_range_on(isa, (setup.seed, n, 1), ny, r.clone(), ra, pha);
+        let (rb, phb) = (&mut buf.rb[r.clone()], &mut buf.phb[r.clone()]);
+        polar_range_on(isa, (setup.seed, n, -1), ny, r.clone(), rb, phb);
+        scale_draws(isa, &buf.pa[r.clone()], ra, pha);
+        scale_draws(isa, &buf.pb[r], rb, phb);
+    }
 }
 
 multiversion! {

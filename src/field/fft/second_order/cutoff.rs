@@ -27,7 +27,7 @@ impl Cutoff {
     pub fn of(setup: &SpectrumSetup, c: f64) -> Self {
         let isa = Isa::detect();
         let depth = depth_of(setup.dispersion);
-        let every = setup.spec.nx / 2 + 1;
+        let every = (setup.spec.nx / 2 + 1, setup.spec.ny / 2 + 1);
         let lines = lines_of(setup, isa, every, false, &|draws| {
             let (mut m0, mut m2) = (0.0, 0.0);
             for d in draws {

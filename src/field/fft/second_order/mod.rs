@@ -42,7 +42,9 @@ use rayon::prelude::*;
 use rustfft::num_complex::{Complex, Complex32};
 use serde::Serialize;
 
-use super::{HalfSpectrum, P_FLOOR_M2, SpectrumSetup, draw_line, resolved_ranges, visit_lines};
+use super::{
+    HalfSpectrum, P_FLOOR_M2, SpectrumSetup, draw_line_in, resolved_ranges, visit_lines, window,
+};
 use crate::fastmath;
 use crate::grid::signed_index;
 use crate::simd::Isa;
@@ -255,17 +257,24 @@ impl Draw {
 fn lines_of<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
-    lines: usize,
+    (lines, cols): (usize, usize),
     draws: bool,
     line: &(dyn Fn(&[Draw]) -> T + Sync),
 ) -> Vec<T> {
     let (nx, ny) = (setup.spec.nx, setup.spec.ny);
-    visit_lines(setup, lines, |n, buf| {
+    let cols = window(ny, cols);
+    visit_lines(setup, (lines, &cols), |n, buf| {
         if draws {
-            draw_line(setup, isa, n, buf);
+            draw_line_in(setup, isa, n, buf, &cols);
         }
         let mut out = Vec::new();
-        for r in resolved_ranges(n, nx, ny) {
+        // The resolved indices within the window.
+        let within = resolved_ranges(n, nx, ny).into_iter().flat_map(|r| {
+            cols.clone()
+                .into_iter()
+                .map(move |c| r.start.max(c.start)..r.end.min(c.end))
+        });
+        for r in within {
             for idx in r {
                 let m = signed_index(idx, ny);
                 let mut push = |n: i64, m: i64, p: f64, rho: f64, phi: f64| {
@@ -292,18 +301,23 @@ fn lines_of<T: Send>(
 }
 
 /// The kx lines (n ≥ 0) that can hold a wave within `cutoff` (None: every line): those
-/// below its wavenumber k_up, with a line of margin.
-fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> usize {
-    let every = setup.spec.nx / 2 + 1;
+/// below its wavenumber k_up, with a line of margin; and the ky indices |m| < cols of
+/// each line that can (the same bound along ky).
+fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> (usize, usize) {
+    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
+    let every = (nx / 2 + 1, ny / 2 + 1);
     let Some(c) = cutoff else { return every };
     let k_up = setup.dispersion.wavenumber(c.omega_up);
-    let dkx = setup.dk().0;
-    let n = (k_up / dkx).floor();
-    if n.is_finite() && n + 2.0 < every as f64 {
-        n as usize + 2
-    } else {
-        every
-    }
+    let (dkx, dky) = setup.dk();
+    let bound = |dk: f64, every: usize| {
+        let n = (k_up / dk).floor();
+        if n.is_finite() && n + 2.0 < every as f64 {
+            n as usize + 2
+        } else {
+            every
+        }
+    };
+    (bound(dkx, every.0), bound(dky, every.1))
 }
 
 /// Every resolved draw with energy of `setup`, line by line, as `keep` maps it (None:
@@ -311,7 +325,7 @@ fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> usize {
 fn each_line<T: Send>(
     setup: &SpectrumSetup,
     isa: Isa,
-    lines: usize,
+    lines: (usize, usize),
     keep: &(dyn Fn(Draw) -> Option<T> + Sync),
 ) -> Vec<Vec<T>> {
     lines_of(setup, isa, lines, true, &|draws| {
@@ -330,7 +344,7 @@ fn octave(p: f64) -> usize {
 fn octaves(
     setup: &SpectrumSetup,
     isa: Isa,
-    lines: usize,
+    lines: (usize, usize),
     admit: &(dyn Fn(&Draw) -> bool + Sync),
 ) -> (Vec<(f64, usize)>, f64) {
     let lines = lines_of(setup, isa, lines, true, &|draws| {

@@ -294,7 +294,7 @@ fn pairs_beyond_nyquist_are_dropped_and_counted() {
 #[test]
 fn the_components_within_the_limit_are_those_of_every_line_that_it_admits() {
     // The components within the convergence limit are drawn on the kx lines below its k_up
-    // only: the same components (indices, draws, in order) as every line's components
+    // only, each line on its ky indices below k_up only: the same components (indices, draws, in order) as every line's components
     // that the limit admits, deep and at finite depth (where it also has a lower bound),
     // with a limit far inside the grid and one beyond it.
     for (sets, c) in [
@@ -323,8 +323,10 @@ fn the_components_within_the_limit_are_those_of_every_line_that_it_admits() {
             loop_period_s: None,
         };
         let cut = Cutoff::of(&setup, c);
-        // The limit inside the grid skips lines; beyond it, none.
-        assert_eq!(lines_within(&setup, Some(cut)) < 65, c < 100.0, "C = {c}");
+        // The limit inside the grid skips lines and the ends of each line (drawn from a
+        // window of it); beyond it, none.
+        let (lines, cols) = lines_within(&setup, Some(cut));
+        assert_eq!((lines < 65, cols < 65), (c < 100.0, c < 100.0), "C = {c}");
         let within = SecondOrder::within(&setup, 1.0, Some(cut));
         let every = SecondOrder::within(&setup, 1.0, None);
         let admitted: Vec<&Component> = every
