@@ -1,5 +1,5 @@
 use super::lines::{exp_line_on, sin_cos_line_on};
-use super::polar::polar_line_on;
+use super::polar::{polar_line_on, polar_range_on};
 use super::*;
 use crate::fastmath;
 use crate::grid::signed_index;
@@ -52,6 +52,37 @@ fn polar_line_equals_gaussian_polar_bit_for_bit() {
     for (i, (r, phi)) in r.into_iter().zip(phi).enumerate() {
         let (wr, wphi) = rng::gaussian_polar(5, -3, -signed_index(i, 4096));
         assert_eq!((r.to_bits(), phi.to_bits()), (wr.to_bits(), wphi.to_bits()));
+    }
+}
+
+#[test]
+fn a_range_of_a_line_draws_what_the_whole_line_draws_there() {
+    // The draws of a window of a line (the second order's components within the
+    // convergence limit) are the whole line's there, bit for bit, on every instruction
+    // set, for ranges at the ends, inside and of one element, lengths odd and even.
+    for isa in Isa::available() {
+        for (ny, sign) in [(1000usize, 1i64), (1000, -1), (97, 1), (4096, -1)] {
+            let (mut r, mut phi) = (vec![0.0; ny], vec![0.0; ny]);
+            polar_line_on(isa, 7, 11, sign, ny, &mut r, &mut phi);
+            for range in [
+                0..1,
+                0..ny.min(37),
+                ny / 2..ny,
+                ny - 13..ny,
+                ny / 4..ny / 4 + 1,
+            ] {
+                let len = range.len();
+                let (mut rr, mut pp) = (vec![f64::NAN; len], vec![f64::NAN; len]);
+                polar_range_on(isa, (7, 11, sign), ny, range.clone(), &mut rr, &mut pp);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&rr), bits(&r[range.clone()]), "{isa:?} {ny} {range:?}");
+                assert_eq!(
+                    bits(&pp),
+                    bits(&phi[range.clone()]),
+                    "{isa:?} {ny} {range:?}"
+                );
+            }
+        }
     }
 }
 

@@ -311,20 +311,8 @@ impl LineBuffers {
 
 /// E|h̃0(±k)|² of kx line n into `buf.pa`, `buf.pb` (one call over the whole line); its kx.
 fn line_variances(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) -> f64 {
-    let (dkx, dky) = setup.dk();
-    let kx = setup.wavevector(n, 0).0;
-    let q = LineQuery {
-        kx,
-        ky: &buf.ky,
-        dkx,
-        dky,
-    };
-    let out = PairOut {
-        a: &mut buf.pa,
-        b: &mut buf.pb,
-    };
-    setup.spectrum.amplitude_variance_pair_line(&q, out);
-    kx
+    line_variances_in(setup, n, buf, 0..buf.ky.len());
+    setup.wavevector(n, 0).0
 }
 
 /// Builds h̃(k, t) for every resolved wavevector with n ≥ 0 (Tessendorf). Values equal
