@@ -112,16 +112,20 @@ pub fn binomial(n: usize, k: usize) -> f64 {
 /// x_i^{2b−m−1} x_j^{2(a−b)−m−1}. In shallow water the collinear pairs come near the
 /// sum-frequency resonance (2 s_i s_j + P − T → 2 s_i s_j·2 tanh²kd/(1 + tanh²kd) for two
 /// equal waves), where products of plain powers of s cannot follow G; the series in
-/// (T − P)/(2 s_i s_j) (−0.53 there at 0.1 λp) can.
+/// (T − P)/(2 s_i s_j) (−0.53 there at 0.1 λp) can. The monomials b and a − b are
+/// one another's mirror (u ↔ v) with the same weight, and a monomial is symmetric in
+/// u ↔ v: each pair is one monomial of twice the weight (b < a/2; b = a/2 alone), so
+/// that the transforms form each product once.
 fn neumann_basis(order: usize) -> Vec<SumTerm> {
     let mut v = Vec::new();
     for m in 0..=order {
         for a in 0..=m {
             let (m_i, a_i) = (m as i32, a as i32);
-            let monomials = (0..=a)
+            let monomials = (0..=a / 2)
                 .map(|b| {
                     let b_i = b as i32;
-                    (binomial(a, b), 2 * b_i - m_i - 1, 2 * (a_i - b_i) - m_i - 1)
+                    let w = binomial(a, b) * if 2 * b < a { 2.0 } else { 1.0 };
+                    (w, 2 * b_i - m_i - 1, 2 * (a_i - b_i) - m_i - 1)
                 })
                 .collect();
             v.push(SumTerm {
