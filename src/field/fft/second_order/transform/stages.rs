@@ -1,0 +1,269 @@
+//! The first and second stages of the product fields' inverse transforms: each factor's
+//! fields built on the kx rows of the components and transformed along ky (the first
+//! stage, a share of the rows of y at a time), then along kx a few rows of y at a time,
+//! just before their products ([`TransformBound::each_cell`]), so that no whole field is
+//! held.
+
+use std::f64::consts::TAU;
+
+use rayon::prelude::*;
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+
+use super::super::C64;
+use super::super::fit::POWERS;
+use super::products::{Acc, Real};
+use super::{TransformBound, Wave};
+
+/// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
+/// terms' fields of Q and 1 reach one below and one above them).
+pub(super) const FIELDS: usize = POWERS + 1;
+
+/// The bytes of first-stage fields a pass over y holds an output cell (the linear field
+/// holds about 17 at its peak; see [`TransformBound::passes`]).
+const PASS_BYTES_PER_CELL: usize = 8;
+
+/// Pass p of P over the rows of y of the first stages (P a divisor of py): the values
+/// at y = P·j + p, j < py/P, X[Pj + p] = Σ_m (x_m e^{2πi m p/py}) e^{2πi m j/(py/P)}: the
+/// components twiddled, folded onto m mod py/P and transformed at that length (one pass:
+/// the whole transform, untwiddled).
+struct Pass<'a> {
+    len: usize,
+    /// e^{2πi m p/py} of each column m (empty in one pass).
+    twiddle: Vec<C64>,
+    /// The inverse transform of `len`.
+    inv: &'a dyn Fft<f64>,
+}
+
+impl<'a> Pass<'a> {
+    fn new(p: usize, passes: usize, py: usize, inv: &'a dyn Fft<f64>) -> Self {
+        let twiddle = match passes {
+            1 => Vec::new(),
+            _ => (0..py)
+                .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
+                .collect(),
+        };
+        Self {
+            len: py / passes,
+            twiddle,
+            inv,
+        }
+    }
+}
+
+/// A factor's first-stage fields: its exponents lo ..= hi.
+pub(super) type Fields = (Factor, (i32, i32));
+
+/// The single-wave factors of the products.
+#[derive(Clone, Copy, PartialEq)]
+pub(super) enum Factor {
+    /// k_x/s, k_y/s, s (the B terms).
+    X,
+    Y,
+    V,
+    /// Q, 1 (the S·A terms of finite depth; Q/s and s are theirs at the exponent below
+    /// and above).
+    W1,
+    W0,
+}
+
+impl Factor {
+    fn of(self, c: &Wave) -> f64 {
+        match self {
+            Factor::X => c.kx / c.s,
+            Factor::Y => c.ky / c.s,
+            Factor::V => c.s,
+            Factor::W1 => c.q,
+            Factor::W0 => 1.0,
+        }
+    }
+}
+
+impl TransformBound {
+    /// The first stages of a factor's fields' inverse transforms, one field for each
+    /// exponent e of `lo ..= hi` (index e − lo): Σ over the components of
+    /// f(k_i)·(|s_i|/s_p)^e·b_i on the kx rows they occupy (|n| ≤ k_x, row n + k_x), each
+    /// row transformed along ky where it lies (rows of zeros stay zero): 2k_x + 1 rows of
+    /// [`Self::row_stride`], every exponent's row of a kx row built at once (each
+    /// component read once), of the rows of y of `pass` ([`Pass`]). The second stage
+    /// reads them across the rows, a few values of j at a time.
+    fn stage_one(&self, b: &[C64], f: Factor, (lo, hi): (i32, i32), pass: &Pass) -> Vec<Vec<C64>> {
+        let py = self.plan.py;
+        let (len, inv) = (pass.len, pass.inv);
+        let stride = self.row_stride(len);
+        let w = self.rows.len() - 1;
+        let ne = (hi - lo + 1).max(0) as usize;
+        let zero = C64::new(0.0, 0.0);
+        let mut fields: Vec<Vec<C64>> = (0..ne).map(|_| self.ones.take_any(w * stride)).collect();
+        // Each kx row of every field, a task a kx row.
+        let mut tasks: Vec<Vec<&mut [C64]>> = (0..w).map(|_| Vec::with_capacity(ne)).collect();
+        for field in fields.iter_mut() {
+            for (row, task) in field.chunks_exact_mut(stride).zip(tasks.iter_mut()) {
+                task.push(&mut row[..len]);
+            }
+        }
+        tasks.into_par_iter().enumerate().for_each_init(
+            || vec![zero; inv.get_inplace_scratch_len()],
+            |scratch, (r, mut rows)| {
+                for row in rows.iter_mut() {
+                    row.fill(zero);
+                }
+                let row_of = self.rows[r]..self.rows[r + 1];
+                for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
+                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                    let bi = match pass.twiddle.get(col) {
+                        Some(&t) => bi * t,
+                        None => bi,
+                    };
+                    // f(k_i)·x^e·b_i of e = lo, lo + 1, …: one multiplication by x an
+                    // exponent.
+                    let x = c.s.abs() / self.fit.s_ref;
+                    let mut w = bi * (f.of(c) * x.powi(lo));
+                    let at = col % len;
+                    for row in rows.iter_mut() {
+                        row[at] += w;
+                        w *= x;
+                    }
+                }
+                for row in rows {
+                    if row.iter().any(|v| *v != zero) {
+                        inv.process_with_scratch(row, scratch);
+                    }
+                }
+            },
+        );
+        fields
+    }
+
+    /// The distance between the kx rows of a first stage of `len` columns: `len` and a
+    /// cache line, so that the second stage's reads down a column of them do not share
+    /// one cache set.
+    fn row_stride(&self, len: usize) -> usize {
+        len + 4
+    }
+
+    /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
+    /// row, and the row of each field of `fs` and `gs` (the fields of the terms'
+    /// factors, each of its exponents lo ..= hi, index e − lo): the transforms' first
+    /// stage ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
+    /// before their products, so that no whole field is held. The first stages of every
+    /// P-th row of y at a time ([`Self::passes`]). The same values as the whole fields'
+    /// transforms (to rounding; the same bits in one pass). With `last`, the terms' last
+    /// products: each row of the accumulators is then transformed along x (the first
+    /// stage of their forward transforms, while the row is at hand).
+    pub(super) fn each_cell<T: Real>(
+        &self,
+        b: &[C64],
+        (fs, gs): (Fields, Fields),
+        acc: &mut Acc<T>,
+        last: bool,
+        add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
+    ) {
+        let (plan, _) = T::forward(self);
+        const ROWS: usize = 4;
+        let (px, py) = (self.plan.px, self.plan.py);
+        let kx = self.reach.0.k;
+        let same = gs == fs;
+        let count = |(_, (lo, hi)): Fields| (hi - lo + 1).max(0) as usize;
+        let passes = self.passes(count(fs) + if same { 0 } else { count(gs) });
+        let len = py / passes;
+        let zero = C64::new(0.0, 0.0);
+        let inv_x = &*self.plan.inv_x;
+        // Each pass's tasks (ROWS rows of y each, y = P·j + p), each row holding the row
+        // of every accumulator.
+        type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
+        let mut by_y: Vec<Rows<T>> = (0..py).map(|_| Vec::with_capacity(acc.len())).collect();
+        for a in acc.iter_mut() {
+            for (y, row) in a.chunks_exact_mut(px).enumerate() {
+                by_y[y].push(row);
+            }
+        }
+        let mut work: Vec<Vec<Vec<Rows<T>>>> = (0..passes)
+            .map(|_| {
+                (0..len.div_ceil(ROWS))
+                    .map(|_| Vec::with_capacity(ROWS))
+                    .collect()
+            })
+            .collect();
+        for (y, rows) in by_y.into_iter().enumerate() {
+            work[y % passes][y / passes / ROWS].push(rows);
+        }
+        // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
+        // zero before the second stage.
+        let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
+        // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
+        // after another's): gathered from its first stage, then transformed along kx.
+        let rows_of = |ones: &[Vec<C64>],
+                       (j0, nj): (usize, usize),
+                       rows: &mut Vec<C64>,
+                       scratch: &mut Vec<C64>| {
+            rows.resize(ones.len() * nj * px, zero);
+            scratch.resize(inv_x.get_inplace_scratch_len(), zero);
+            for (l, one) in ones.iter().enumerate() {
+                let block = &mut rows[l * nj * px..(l + 1) * nj * px];
+                for row in block.chunks_exact_mut(px) {
+                    row[gap.clone()].fill(zero);
+                }
+                // Kx row r = n + k_x (n = −k_x ..= k_x) into column n, wrapped (px >
+                // 2k_x + o_x: the wrapped indices never meet).
+                for (r, from) in one.chunks_exact(self.row_stride(len)).enumerate() {
+                    let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                    for (jj, &v) in from[j0..j0 + nj].iter().enumerate() {
+                        block[jj * px + col] = v;
+                    }
+                }
+                for row in block.chunks_exact_mut(px) {
+                    inv_x.process_with_scratch(row, scratch);
+                }
+            }
+        };
+        // The transform of a pass's share of the columns, planned once.
+        let short = (passes > 1).then(|| FftPlanner::new().plan_fft_inverse(len));
+        let inv = short.as_deref().unwrap_or(&*self.plan.inv_y);
+        for (p, tasks) in work.into_iter().enumerate() {
+            let pass = Pass::new(p, passes, py, inv);
+            let fields = |(f, e)| self.stage_one(b, f, e, &pass);
+            let f_one = fields(fs);
+            let g_one = if same { Vec::new() } else { fields(gs) };
+            let g_src = if same { &f_one } else { &g_one };
+            tasks.into_par_iter().enumerate().for_each_init(
+                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                |(fr, gr, scratch, scratch_t), (c, mut out)| {
+                    let at_rows = (c * ROWS, out.len());
+                    rows_of(&f_one, at_rows, fr, scratch);
+                    if !same {
+                        rows_of(g_src, at_rows, gr, scratch);
+                    }
+                    let gr = if same { &*fr } else { &*gr };
+                    let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
+                    for (jj, rows) in out.iter_mut().enumerate() {
+                        let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
+                        let fv: [&[C64]; FIELDS] =
+                            std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
+                        let gv: [&[C64]; FIELDS] =
+                            std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
+                        add(rows, &fv, &gv);
+                        if last {
+                            for row in rows.iter_mut() {
+                                plan.forward_x(row, scratch_t);
+                            }
+                        }
+                    }
+                },
+            );
+            self.ones.give_all(f_one.into_iter().chain(g_one));
+        }
+    }
+
+    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields: the least
+    /// divisor of py that holds at most [`PASS_BYTES_PER_CELL`] bytes an output cell of
+    /// them at once (each pass folds the components onto its share of the columns and
+    /// transforms that: the passes together cost about one whole transform).
+    fn passes(&self, ne: usize) -> usize {
+        let py = self.plan.py;
+        let held = ne * (self.rows.len() - 1) * self.row_stride(py) * size_of::<C64>();
+        let cap = PASS_BYTES_PER_CELL * self.spec.nx * self.spec.ny;
+        let least = held.div_ceil(cap.max(1)).clamp(1, py);
+        (least..=py).find(|d| py % d == 0).unwrap_or(py)
+    }
+}
