@@ -1,3 +1,4 @@
+use super::bases::FINITE_NEUMANN_ORDER;
 use super::sample::GUIDES;
 use super::*;
 use crate::field::fft::second_order::{kernel_minus, kernel_plus, self_kernels};
