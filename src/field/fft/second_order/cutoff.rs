@@ -1,6 +1,7 @@
 //! The convergence limit of the second-order series: which free waves are paired.
 
-use super::{G, Isa, depth_of, lines_of, r_of, tanh};
+use super::draws::lines_of;
+use super::{G, Isa, depth_of, r_of, tanh};
 use crate::field::fft::SpectrumSetup;
 use crate::spectrum::Dispersion;
 
