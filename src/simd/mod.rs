@@ -28,7 +28,7 @@ mod polar;
 pub(crate) use dispatch::multiversion;
 pub(crate) use isa::Isa;
 pub(crate) use lines::{exp_line_on, sin_cos_line_on};
-pub(crate) use polar::{polar_line_on, polar_range_on};
+pub(crate) use polar::polar_range_on;
 
 #[cfg(test)]
 mod tests;

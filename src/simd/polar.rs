@@ -9,8 +9,12 @@ use crate::simd::{Isa, multiversion};
 /// with `m_i = fft::signed_index(i, ny)`, bit-identical to calling
 /// [`rng::gaussian_polar`] one by one (the products `sign·n`, `sign·m_i` wrap).
 ///
+/// (The whole-line case of [`polar_range_on`], which the field's lines call; kept for
+/// the tests of the kernels against [`rng::gaussian_polar`].)
+///
 /// # Panics
 /// If `r` and `phi` differ in length.
+#[cfg(test)]
 pub(crate) fn polar_line_on(
     isa: Isa,
     seed: u64,
@@ -21,22 +25,17 @@ pub(crate) fn polar_line_on(
     phi: &mut [f64],
 ) {
     assert_eq!(r.len(), phi.len(), "polar_line: r and phi differ in length");
-    let prefix = rng::polar_prefix(seed, sign.wrapping_mul(n));
-    with_words(sign, ny, r.len(), |words| match isa {
-        Isa::Plain => polar_run_fused(isa, prefix, words, r, phi),
-        // SAFETY: Isa::Avx2 is only chosen when the processor has AVX2.
-        #[cfg(target_arch = "x86_64")]
-        Isa::Avx2 => unsafe { super::avx2::polar_run(prefix, words, r, phi) },
-        #[cfg(target_arch = "x86_64")]
-        Isa::Avx512 => polar_run_fused(isa, prefix, words, r, phi),
-    });
+    polar_range_on(isa, (seed, n, sign), ny, 0..r.len(), r, phi);
 }
 
-/// [`polar_line_on`] on the elements `range` of a line of `ny` only (`r`, `phi` of its
-/// length): the same values as theirs in a whole line, bit for bit.
+/// On the instruction set `isa`, for the elements `i` of `range` of a line of `ny`
+/// (`r`, `phi` of its length, index i − range.start): `(r, phi) =
+/// rng::gaussian_polar(seed, sign·n, sign·m_i)` with `m_i = fft::signed_index(i, ny)`,
+/// bit-identical to calling [`rng::gaussian_polar`] one by one (the products wrap): the
+/// words of the whole line, kept per thread, read at `range`.
 ///
 /// # Panics
-/// If `r` or `phi` differ in length from `range`, or `range` ends beyond `ny`.
+/// If `r` or `phi` differ in length from `range`.
 pub(crate) fn polar_range_on(
     isa: Isa,
     (seed, n, sign): (u64, i64, i64),
@@ -46,11 +45,11 @@ pub(crate) fn polar_range_on(
     phi: &mut [f64],
 ) {
     assert!(
-        r.len() == range.len() && phi.len() == range.len() && range.end <= ny,
-        "polar_range: r and phi must cover the range of the line"
+        r.len() == range.len() && phi.len() == range.len(),
+        "polar_range: r and phi differ in length from the range"
     );
     let prefix = rng::polar_prefix(seed, sign.wrapping_mul(n));
-    with_words(sign, ny, ny, |words| {
+    with_words(sign, ny, range.end.max(ny), |words| {
         let words = &words[range];
         match isa {
             Isa::Plain => polar_run_fused(isa, prefix, words, r, phi),

@@ -9,7 +9,7 @@ use rustfft::num_complex::Complex32;
 
 use super::{HalfSpectrum, SpectrumSetup, scale_draw};
 use crate::grid::signed_index;
-use crate::simd::{Isa, multiversion, polar_line_on, polar_range_on};
+use crate::simd::{Isa, multiversion, polar_range_on};
 use crate::spectrum::{LineQuery, PairOut};
 
 /// Per-thread buffers of one kx line.
@@ -148,10 +148,7 @@ fn line_variances(setup: &SpectrumSetup, n: i64, buf: &mut LineBuffers) -> f64 {
 /// amplitude variances in `buf.pa`, `buf.pb`, on `isa`.
 pub(super) fn draw_line(setup: &SpectrumSetup, isa: Isa, n: i64, buf: &mut LineBuffers) {
     let ny = setup.spec.ny;
-    polar_line_on(isa, setup.seed, n, 1, ny, &mut buf.ra, &mut buf.pha);
-    polar_line_on(isa, setup.seed, n, -1, ny, &mut buf.rb, &mut buf.phb);
-    scale_draws(isa, &buf.pa, &mut buf.ra, &mut buf.pha);
-    scale_draws(isa, &buf.pb, &mut buf.rb, &mut buf.phb);
+    draw_line_in(setup, isa, n, buf, &window(ny, ny));
 }
 
 /// [`draw_line`] at the indices `cols` of the line only ([`window`]; elsewhere unset):

@@ -1,6 +1,6 @@
 //! The convergence limit of the second-order series: which free waves are paired.
 
-use super::draws::lines_of;
+use super::draws::{every_line, lines_of};
 use super::{G, Isa, depth_of, r_of, tanh};
 use crate::field::fft::SpectrumSetup;
 use crate::spectrum::Dispersion;
@@ -28,8 +28,7 @@ impl Cutoff {
     pub fn of(setup: &SpectrumSetup, c: f64) -> Self {
         let isa = Isa::detect();
         let depth = depth_of(setup.dispersion);
-        let every = (setup.spec.nx / 2 + 1, setup.spec.ny / 2 + 1);
-        let lines = lines_of(setup, isa, every, false, &|draws| {
+        let lines = lines_of(setup, isa, every_line(setup), false, &|draws| {
             let (mut m0, mut m2) = (0.0, 0.0);
             for d in draws {
                 m0 += 2.0 * d.p;

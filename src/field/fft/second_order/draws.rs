@@ -25,9 +25,9 @@ impl Draw {
     }
 }
 
-/// Every resolved draw with energy of `setup` on the kx lines |n| < `lines`, line by line
-/// (kx index ≥ 0, with its mirror line): what `line` makes of each line's draws, in line
-/// order. Without `draws` only E|h̃0|² is filled in (ρ and φ 0: the expected spectrum,
+/// Every resolved draw with energy of `setup` on the kx lines |n| < `lines`, at the ky
+/// indices |m| < `cols` of each ([`every_line`]: all of them), line by line (kx index ≥ 0,
+/// with its mirror line): what `line` makes of each line's draws, in line order. Without `draws` only E|h̃0|² is filled in (ρ and φ 0: the expected spectrum,
 /// its cells above [`P_FLOOR_M2`], those whose draws have energy).
 pub(super) fn lines_of<T: Send>(
     setup: &SpectrumSetup,
@@ -79,8 +79,7 @@ pub(super) fn lines_of<T: Send>(
 /// below its wavenumber k_up, with a line of margin; and the ky indices |m| < cols of
 /// each line that can (the same bound along ky).
 pub(super) fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> (usize, usize) {
-    let (nx, ny) = (setup.spec.nx, setup.spec.ny);
-    let every = (nx / 2 + 1, ny / 2 + 1);
+    let every = every_line(setup);
     let Some(c) = cutoff else { return every };
     let k_up = setup.dispersion.wavenumber(c.omega_up);
     let (dkx, dky) = setup.dk();
@@ -93,6 +92,12 @@ pub(super) fn lines_within(setup: &SpectrumSetup, cutoff: Option<Cutoff>) -> (us
         }
     };
     (bound(dkx, every.0), bound(dky, every.1))
+}
+
+/// The kx lines (n ≥ 0) and the ky indices |m| < cols of [`lines_of`] that cover the
+/// whole half spectrum.
+pub(super) fn every_line(setup: &SpectrumSetup) -> (usize, usize) {
+    (setup.spec.nx / 2 + 1, setup.spec.ny / 2 + 1)
 }
 
 /// Every resolved draw with energy of `setup`, line by line, as `keep` maps it (None:
