@@ -109,11 +109,63 @@ fn pierson_moskowitz_storm_has_tayfun_skewness_and_raised_crests() {
 }
 
 #[test]
-fn linear_is_the_default_and_second_order_needs_fft_and_no_choppiness() {
+fn a_hybrid_sea_blends_the_second_order_fft_sea() {
+    // h = α·h_fft + (1 − α)·b·h_perlin (Li Tian eq. 10): at a constant α the hybrid's
+    // second-order field less its linear one is α times the fft method's (the same free
+    // waves, the same b = max|h̃0| of the linear draws, the same noise), to the rounding
+    // of single-precision heights (TOL_M). The bound waves themselves are larger than
+    // BOUND_MIN_M rms, so a hybrid that dropped them fails.
+    const ALPHA: f32 = 0.6;
+    const TOL_M: f32 = 2e-6;
+    const BOUND_MIN_M: f64 = 0.01;
+    let field = |method: &'static str, nonlinear: &'static str| {
+        let mut sets = BASE.to_vec();
+        sets.extend([
+            method,
+            nonlinear,
+            "blend.alpha.kind=constant",
+            "blend.alpha.value=0.6",
+        ]);
+        synthesize(&params(&sets)).unwrap()
+    };
+    let fft = |n| field("method=fft", n).grid.data;
+    let (f1, f2) = (fft("nonlinear=linear"), fft("nonlinear=second-order"));
+    let h1 = field("method=hybrid", "nonlinear=linear");
+    let h2 = field("method=hybrid", "nonlinear=second-order");
+    let info = h2.info.second_order.clone();
+    assert!(
+        info.as_ref().is_some_and(|i| i.method.is_some()),
+        "the hybrid's sidecar records the bound waves: {info:?}"
+    );
+    assert!(h1.info.second_order.is_none());
+    let (h1, h2) = (h1.grid.data, h2.grid.data);
+    let n = f1.len() as f64;
+    let bound_rms = (f2
+        .iter()
+        .zip(&f1)
+        .map(|(a, b)| f64::from(a - b).powi(2))
+        .sum::<f64>()
+        / n)
+        .sqrt();
+    assert!(bound_rms > BOUND_MIN_M, "bound waves of {bound_rms} m rms");
+    let worst = (0..f1.len())
+        .map(|i| ((h2[i] - h1[i]) - ALPHA * (f2[i] - f1[i])).abs())
+        .fold(0.0f32, f32::max);
+    eprintln!("bound waves {bound_rms:.4} m rms; hybrid against α·fft: {worst:.2e} m at most");
+    assert!(
+        worst <= TOL_M,
+        "the hybrid's bound waves differ from α·fft's by {worst} m"
+    );
+}
+
+#[test]
+fn linear_is_the_default_and_second_order_needs_an_fft_sea_and_no_choppiness() {
     let p = params(&BASE);
     assert!(p.spectrum.nonlinear.is_linear());
     for (set, name) in [
         ("method=filtered-noise", "--nonlinear"),
+        ("method=perlin", "--nonlinear"),
+        ("method=trochoid", "--nonlinear"),
         ("spectrum=phillips", "--nonlinear"),
         ("choppiness=0.5", "--choppiness"),
         ("spectrum.nonlinear_fraction=0", "nonlinear_fraction"),
@@ -287,6 +339,15 @@ fn an_unlooped_second_order_animation_is_generate_at_each_time_at_any_thread_cou
     let depth_20 = ["--depth", "20", "--set", "spectrum.nonlinear_method=fitted"];
     frames_are_generate(dir.path(), &small_sea(&depth_20), 4);
     let side = common::json_file(&dir.path().join("g.json"));
+    assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
+    // The hybrid method's FFT sea: the same, under the blend with the noise.
+    let dir = tempfile::tempdir().unwrap();
+    let mut hybrid = small_sea(&[]);
+    assert_eq!(hybrid[..2], ["--method", "fft"]);
+    hybrid[1] = "hybrid";
+    frames_are_generate(dir.path(), &hybrid, 4);
+    let side = common::json_file(&dir.path().join("g.json"));
+    assert_eq!(side["params"]["method"], "hybrid");
     assert_eq!(side["synthesis"]["second_order"]["method"], "fitted");
 }
 

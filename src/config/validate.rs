@@ -306,10 +306,11 @@ impl Params {
         if self.spectrum.nonlinear == Nonlinear::Linear {
             return Ok(());
         }
-        if self.method != Method::Fft {
+        if !matches!(self.method, Method::Fft | Method::Hybrid) {
             return Err(err(
                 KEY,
-                "linear unless --method fft (second-order seas are built on the FFT spectrum)",
+                "linear unless --method fft or hybrid (the bound waves are those of the FFT \
+                 sea's random spectrum, which the other methods do not draw)",
                 "second-order",
             ));
         }

@@ -138,7 +138,7 @@ class SeasynthSea(bpy.types.PropertyGroup):
     )
     second_order: BoolProperty(
         name="Second Order",
-        description="Add the bound waves of second-order theory (--nonlinear second-order; FFT, physical spectra, no choppiness)",
+        description="Add the bound waves of second-order theory (--nonlinear second-order; FFT or hybrid, physical spectra, no choppiness)",
         default=False,
         update=_changed,
     )

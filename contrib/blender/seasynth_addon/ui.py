@@ -60,7 +60,7 @@ class VIEW3D_PT_seasynth(bpy.types.Panel):
         col.prop(s, "seed")
         col.prop(s, "loop_period")
         sub = col.row()
-        sub.active = s.method == "fft" and s.spectrum in PHYSICAL and s.choppiness == 0.0
+        sub.active = s.method in ("fft", "hybrid") and s.spectrum in PHYSICAL and s.choppiness == 0.0
         sub.prop(s, "second_order")
         col.prop(s, "sample_at")
         col.prop(s, "seamless")

@@ -1,5 +1,6 @@
 //! The `hybrid` method (the default): Li Tian's blend of an FFT sea and Perlin noise under
-//! the weight α (eq. 10), h = α·h_fft + (1 − α)·b·h_perlin.
+//! the weight α (eq. 10), h = α·h_fft + (1 − α)·b·h_perlin; h_fft second-order where
+//! asked (the [`FftSea`]'s bound waves, recorded in the sidecar).
 
 use super::{FftSea, HeightMethod, PerlinNoise, finish};
 use crate::config::{AlphaConfig, Beta, Params};
@@ -69,8 +70,9 @@ impl HeightMethod for Hybrid {
             maps_only: false,
             ..extras
         };
-        let (mut grid, surface, h0max_m, _) = self.sea.field(time_s, sea_extras);
+        let (mut grid, surface, h0max_m, bound) = self.sea.field(time_s, sea_extras);
         let mut info = self.sea.info().clone();
+        info.second_order = bound;
         info.perlin_wavelengths_m = self.noise.info().perlin_wavelengths_m.clone();
         info.h0max_m = Some(h0max_m);
         let b = self.beta_m(&grid, h0max_m);
@@ -80,7 +82,9 @@ impl HeightMethod for Hybrid {
     }
 
     fn bytes_per_sample(&self) -> u64 {
-        14
+        // The linear sea's 10 bytes a sample, the noise's 4, and what a second-order sea
+        // adds to the first.
+        self.sea.bytes_per_sample() + 4
     }
 
     /// Periodic when both fields are and α is constant (a ramp, radial or image α breaks
