@@ -25,6 +25,7 @@ CASES = [
     ("choppy", ["--method", "fft", "--spectrum", "jonswap", "--choppiness", "1", "--time", "2.5"]),
     ("centers", ["--method", "fft", "--spectrum", "pierson-moskowitz", "--sample-at", "centers"]),
     ("second-order", ["--method", "fft", "--spectrum", "pierson-moskowitz", "--wind-speed", "15", "--nonlinear", "second-order", "--extent", "1024"]),
+    ("hybrid-second-order", ["--method", "hybrid", "--spectrum", "pierson-moskowitz", "--wind-speed", "15", "--nonlinear", "second-order", "--extent", "1024"]),
 ]
 
 
