@@ -119,8 +119,8 @@ pub struct FieldArgs {
     /// [default: the preset's; none (no loop) in li-tian]
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub loop_period: Option<String>,
-    /// Sea theory of --method fft: linear or second-order (adds the bound waves) [default:
-    /// the preset's; linear in li-tian]
+    /// Sea theory of the FFT sea (--method fft or hybrid): linear or second-order (adds the
+    /// bound waves) [default: the preset's; linear in li-tian]
     #[arg(long, value_name = "ORDER")]
     pub nonlinear: Option<String>,
     /// Choppy waves: horizontal displacement factor λ (0: none; 1: trochoid-like) [default:
