@@ -202,15 +202,17 @@ impl<T: FftNum> Plan<T> {
         self.fwd_x.process_with_scratch(row, scratch);
     }
 
-    /// Rows of y transformed along x already ([`Self::forward_x`]; py rows of px) →
-    /// spectrum (px rows of py), on the kx rows `wanted` names (the other rows hold the
-    /// transforms along x).
+    /// Rows of y transformed along x already ([`Self::forward_x`]; `rows` of px) →
+    /// spectrum (px rows of `rows`) by `fwd` (of length `rows`; None: py's), on the kx
+    /// rows `wanted` names (the other rows hold the transforms along x).
     pub(super) fn forward_y_rows(
         &self,
         data: &mut Vec<Complex<T>>,
+        (rows, fwd): (usize, Option<&dyn Fft<T>>),
         wanted: &(dyn Fn(usize) -> bool + Sync),
         pool: &Pool<T>,
     ) {
-        Self::two_d(data, (self.py, self.px), (&*self.fwd_y, None), wanted, pool);
+        let fwd = fwd.unwrap_or(&*self.fwd_y);
+        Self::two_d(data, (rows, self.px), (fwd, None), wanted, pool);
     }
 }

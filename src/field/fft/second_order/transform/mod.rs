@@ -15,12 +15,13 @@
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
 
 use exact::Exact;
 use grid::{Plan, Pool, Reach};
 use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
-use stages::{FIELDS, Factor};
+use stages::{FIELDS, Factor, Passes};
 
 use super::fit::{Box2, KernelFit, MAX_NB, Region};
 use super::{
@@ -83,6 +84,9 @@ pub struct TransformBound {
     /// The outputs nearest q = 0, whose difference terms are their pair sums.
     exact: Exact,
     spec: GridSpec,
+    /// The accumulators' bytes an output cell a pass over y may hold
+    /// ([`stages::ACC_BYTES_PER_CELL`]; the tests set others).
+    acc_budget: usize,
 }
 
 /// The reach of `comps` on a grid of nx × ny.
@@ -131,6 +135,7 @@ impl TransformBound {
             rows,
             ones: Pool::default(),
             fit,
+            acc_budget: stages::ACC_BYTES_PER_CELL,
         }
     }
 
@@ -284,9 +289,14 @@ impl TransformBound {
         // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
         let ox = self.reach.0.o;
         let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
-        let transform = |mut acc: Vec<Complex<T>>| {
-            plan.forward_y_rows(&mut acc, &kept_row, pool);
+        // A pass's accumulators (its py/P rows of y, transformed along x) into their
+        // spectra along y at its length.
+        let transform = |passes: &Passes, fwd: Option<&dyn Fft<T>>, mut acc: Vec<Complex<T>>| {
+            plan.forward_y_rows(&mut acc, (passes.acc_len, fwd), &kept_row, pool);
             acc
+        };
+        let short = |passes: &Passes| {
+            (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len))
         };
         // The fields of exponent e are at index e − lo.
         let bases = &self.fit.bases;
@@ -314,62 +324,83 @@ impl TransformBound {
         // Accumulator 0: the separable part B + R_i + R_j (sum re, difference im); 1 + g:
         // the weighted parts of the B terms (multiplied by 2T c) in `layout`'s slot g, and
         // at finite depth those of the S·A terms (by c, in `sa`, slot g at g).
-        let mut acc: Acc<T> = (0..=groups).map(|_| pool.take(px * py)).collect();
-        let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
-        for &(f, sign) in types {
-            let fe = (f, (lo, hi));
-            // (V's products are the last of the B terms.)
-            self.each_cell(b, (fe, fe), &mut acc, f == Factor::V, |c, p, _| {
-                if f == Factor::V {
-                    // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
-                    // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
-                    let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
-                    for ((c, r), o) in rows {
-                        c.re += T::of(2.0 * (r * o).re);
-                        c.im += T::of(2.0 * (r * o.conj()).re);
+        let b_terms = |f: Factor, sign: f64, c: &mut [&mut [Complex<T>]], p: &[&[C64]]| {
+            if f == Factor::V {
+                // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
+                // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
+                let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
+                for ((c, r), o) in rows {
+                    c.re += T::of(2.0 * (r * o).re);
+                    c.im += T::of(2.0 * (r * o.conj()).re);
+                }
+            }
+            // The separable part's B.
+            for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
+                c.re += T::of(sign * (p0 * p0).re);
+                c.im += T::of((p0 * p0.conj()).re);
+            }
+            for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
+                for &(w, u, v) in &f.monomials {
+                    let k = sign * w;
+                    for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
+                        *part(c, im) += T::of(k * (a * b).re);
                     }
                 }
-                // The separable part's B.
-                for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
-                    c.re += T::of(sign * (p0 * p0).re);
-                    c.im += T::of((p0 * p0.conj()).re);
-                }
-                for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
-                    for &(w, u, v) in &f.monomials {
-                        let k = sign * w;
-                        for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                            *part(c, im) += T::of(k * (a * b).re);
-                        }
-                    }
-                }
-                let mut sum = Vec::new();
-                for (m, (t, &(g, im))) in halves.iter().zip(&layout.diff).enumerate() {
-                    let p = &p[at(0)..];
-                    power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
-                }
-            });
-        }
-        // (The first stages are done with until the finite-depth terms.)
-        self.ones.clear();
-        // The B terms' transforms gathered at the kept outputs, then given back (the
-        // finite-depth S·A terms reuse their arrays).
+            }
+            let mut sum = Vec::new();
+            for (m, (t, &(g, im))) in halves.iter().zip(&layout.diff).enumerate() {
+                let p = &p[at(0)..];
+                power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
+            }
+        };
+        // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each pass's added.
         let ox_oy = (ox, self.reach.1.o);
         let columns = (2 * ox_oy.1 + 1).max(0) as usize;
-        let mut kept = vec![C64::new(0.0, 0.0); (ox + 1).max(0) as usize * columns];
-        let transformed: Acc<T> = acc.into_iter().map(transform).collect();
-        self.gather(&mut kept, &transformed, &layout, true);
-        pool.give_all(transformed);
+        // (Made once the first pass's products are done: not held beside its first stages.)
+        let kept_len = (ox + 1).max(0) as usize * columns;
+        let mut kept = Vec::new();
+        // The B terms, a pass over y at a time (the three factors' fields of one pass,
+        // then its accumulators' transforms gathered at the kept outputs).
+        let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
+        let cell = size_of::<Complex<T>>();
+        let passes = self.passes((hi - lo + 1) as usize, (groups + 1, cell));
+        let fwd = short(&passes);
+        for a in 0..passes.acc {
+            let mut acc: Acc<T> = (0..=groups)
+                .map(|_| pool.take(px * passes.acc_len))
+                .collect();
+            for &(f, sign) in types {
+                let fe = (f, (lo, hi));
+                // (V's products are the last of the B terms.)
+                let last = f == Factor::V;
+                for p in (a..passes.count).step_by(passes.acc) {
+                    self.each_cell(b, (fe, fe), ((p, &passes), &mut acc), last, |c, q, _| {
+                        b_terms(f, sign, c, q)
+                    });
+                }
+            }
+            if a + 1 == passes.acc {
+                // (The first stages are done with until the finite-depth terms.)
+                self.ones.clear();
+            }
+            kept.resize(kept_len, C64::new(0.0, 0.0));
+            let transformed: Acc<T> = acc
+                .into_iter()
+                .map(|acc| transform(&passes, fwd.as_deref(), acc))
+                .collect();
+            self.gather(&mut kept, &transformed, &layout, (true, (a, &passes)));
+            pool.give_all(transformed);
+        }
+        // (The B terms' arrays are not held through the finite-depth terms.)
+        pool.clear();
         if finite {
-            let mut sa_acc: Acc<T> = (0..groups).map(|_| pool.take(px * py)).collect();
-            // (The B terms' arrays left over are not held through the S·A terms.)
-            pool.clear();
             // S·A = Q_i + Q_j ± ((Q/s)_i s_j + s_i (Q/s)_j) (+ in the sum term, − in the
             // difference), each with its mirror (the expansion is symmetric in a ↔ 2m − a).
             // With x = |s|/s_p, (Q/s)·x^u is Q·x^{u−1}/s_p and s·x^v is s_p·x^{v+1}: the
             // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
             // give both products (the s_p cancel).
             let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
-            self.each_cell(b, (q_e, one_e), &mut sa_acc, true, |c, q, one| {
+            let sa_terms = |c: &mut [&mut [Complex<T>]], q: &[&[C64]], one: &[&[C64]]| {
                 // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
                 let q_at = |e: i32| q[(e - lo + 1) as usize];
                 let one_at = |e: i32| one[(e - lo) as usize];
@@ -394,10 +425,26 @@ impl TransformBound {
                     power_term(c[g], q0, &one[at(0)..], t, m, (2.0, im), &mut sum);
                     power_term(c[g], q1, &one[at(1)..], t, m, (-2.0, im), &mut sum);
                 }
-            });
-            self.ones.clear();
-            let sa: Acc<T> = sa_acc.into_iter().map(transform).collect();
-            self.gather(&mut kept, &sa, &layout, false);
+            };
+            let passes = self.passes(2 * (hi - lo + 2) as usize, (groups, cell));
+            let fwd = short(&passes);
+            for a in 0..passes.acc {
+                let mut acc: Acc<T> = (0..groups)
+                    .map(|_| pool.take(px * passes.acc_len))
+                    .collect();
+                for p in (a..passes.count).step_by(passes.acc) {
+                    self.each_cell(b, (q_e, one_e), ((p, &passes), &mut acc), true, sa_terms);
+                }
+                if a + 1 == passes.acc {
+                    self.ones.clear();
+                }
+                let sa: Acc<T> = acc
+                    .into_iter()
+                    .map(|acc| transform(&passes, fwd.as_deref(), acc))
+                    .collect();
+                self.gather(&mut kept, &sa, &layout, (false, (a, &passes)));
+                pool.give_all(sa);
+            }
         }
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
         // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).

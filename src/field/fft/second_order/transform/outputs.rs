@@ -2,6 +2,8 @@
 //! coefficients of the fit (a function of |q| alone, so the same at (n, m) and (n, −m);
 //! tabulated once for a sequence), and the gathering of the transforms there.
 
+use std::f64::consts::TAU;
+
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
 
@@ -9,6 +11,7 @@ use super::super::C64;
 use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
 use super::products::{Acc, Layout, Part, Real, wide};
+use super::stages::Passes;
 use crate::grid::GridSpec;
 
 /// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
@@ -95,22 +98,32 @@ impl TransformBound {
         self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
     }
 
-    /// Adds the transforms `accs` at each kept output (lines 0 ..= o_x, columns
+    /// Adds the transforms `accs` of the accumulators' pass p of `passes` (px rows of its
+    /// py/P_a values of ky, [`super::stages::Passes`]) at each kept output (lines 0 ..= o_x, columns
     /// −o_y ..= o_y) to `kept`: the B terms' (`b_terms`: the separable part, then the
     /// slots of `layout` times 2T and their output coefficients), or the S·A terms' (the
-    /// slots times their coefficients). In this order, the same sums as one pass over
-    /// both.
+    /// slots times their coefficients). A pass's transform at ky index m is the whole
+    /// transform's part of its rows of y: times e^{−2πi m p/py}, the passes add up to the
+    /// whole. In one pass, the same sums as one pass over both terms.
     pub(super) fn gather<T: Real>(
         &self,
         kept: &mut [C64],
         accs: &Acc<T>,
         layout: &Layout,
-        b_terms: bool,
+        (b_terms, (p, passes)): (bool, (usize, &Passes)),
     ) {
         let (px, py) = (self.plan.px, self.plan.py);
+        let len = passes.acc_len;
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
+        // e^{−2πi k/py} of k < py (the passes' twiddles; none in one pass).
+        let turns: Vec<C64> = match passes.acc {
+            1 => Vec::new(),
+            _ => (0..py)
+                .map(|k| C64::from_polar(1.0, -TAU * k as f64 / py as f64))
+                .collect(),
+        };
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         kept.par_chunks_mut(columns.max(1))
             .enumerate()
@@ -125,10 +138,9 @@ impl TransformBound {
                 let n = n as i64;
                 for (j, h) in line.iter_mut().enumerate() {
                     let m = j as i64 - oy;
-                    let here =
-                        n.rem_euclid(px as i64) as usize * py + m.rem_euclid(py as i64) as usize;
-                    let there = (-n).rem_euclid(px as i64) as usize * py
-                        + (-m).rem_euclid(py as i64) as usize;
+                    let (ky, ky_neg) = (m.rem_euclid(py as i64), (-m).rem_euclid(py as i64));
+                    let here = n.rem_euclid(px as i64) as usize * len + ky as usize % len;
+                    let there = (-n).rem_euclid(px as i64) as usize * len + ky_neg as usize % len;
                     // The sum (re) and difference (im) parts of a packed transform.
                     let unpack = |f: &[Complex<T>]| {
                         let (a, b) = (wide(f[here]), wide(f[there]).conj());
@@ -147,18 +159,25 @@ impl TransformBound {
                         Some(Part::Diff(m)) if !exact_diff => v * (k * cm[m]),
                         _ => C64::new(0.0, 0.0),
                     };
+                    // In one pass, into the output itself; else this pass's part, then
+                    // added with its twiddle.
+                    let mut part = C64::new(0.0, 0.0);
+                    let into = if turns.is_empty() { &mut *h } else { &mut part };
                     if b_terms {
                         let (s, d) = unpack(&accs[0]);
-                        *h = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
+                        *into = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
                         for (f, slot) in accs[1..].iter().zip(&layout.slots) {
                             let (s, d) = unpack(f);
-                            *h += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+                            *into += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
                         }
                     } else {
                         for (f, slot) in accs.iter().zip(&layout.slots) {
                             let (s, d) = unpack(f);
-                            *h += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                            *into += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
                         }
+                    }
+                    if !turns.is_empty() {
+                        *h += turns[(ky as usize * p) % py] * part;
                     }
                 }
             });

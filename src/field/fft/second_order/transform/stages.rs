@@ -5,6 +5,7 @@
 //! held.
 
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 use rayon::prelude::*;
 use rustfft::num_complex::Complex;
@@ -18,6 +19,12 @@ use super::{TransformBound, Wave};
 /// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
 /// terms' fields of Q and 1 reach one below and one above them).
 pub(super) const FIELDS: usize = POWERS + 1;
+
+/// The bytes of the accumulators a pass over y holds an output cell, at most: above it,
+/// they are built a share of the rows of y at a time ([`Passes`]), each share's
+/// transforms gathered at the outputs. The 19 m storm over 2048 m holds about 26 at 1024²
+/// in one pass; over 4096 m its box has 4 times the cells.
+pub(super) const ACC_BYTES_PER_CELL: usize = 32;
 
 /// The bytes of first-stage fields a pass over y holds an output cell (the linear field
 /// holds about 17 at its peak; see [`TransformBound::passes`]).
@@ -142,51 +149,49 @@ impl TransformBound {
         len + 4
     }
 
-    /// `add(rows, f, g)` on every row of padded cells (py rows of px): the accumulators'
-    /// row, and the row of each field of `fs` and `gs` (the fields of the terms'
-    /// factors, each of its exponents lo ..= hi, index e − lo): the transforms' first
-    /// stage ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
-    /// before their products, so that no whole field is held. The first stages of every
-    /// P-th row of y at a time ([`Self::passes`]). The same values as the whole fields'
-    /// transforms (to rounding; the same bits in one pass). With `last`, the terms' last
-    /// products: each row of the accumulators is then transformed along x (the first
-    /// stage of their forward transforms, while the row is at hand).
+    /// `add(rows, f, g)` on every row of padded cells of pass `pass` (the rows of y
+    /// P·j + p, j < py/P, [`Passes`]): the accumulators' row of y (`acc`: the py/P_a rows
+    /// of px of the accumulators' pass p mod P_a),
+    /// and the row of each field of `fs` and `gs` (the fields of the terms' factors, each
+    /// of its exponents lo ..= hi, index e − lo): the transforms' first stage
+    /// ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
+    /// before their products, so that no whole field is held. The same values as the
+    /// whole fields' transforms (to rounding; the same bits in one pass). With `last`,
+    /// the terms' last products: each row of the accumulators is then transformed along
+    /// x (the first stage of their forward transforms, while the row is at hand).
     pub(super) fn each_cell<T: Real>(
         &self,
         b: &[C64],
         (fs, gs): (Fields, Fields),
-        acc: &mut Acc<T>,
+        (pass, acc): ((usize, &Passes), &mut Acc<T>),
         last: bool,
         add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
         let (plan, _) = T::forward(self);
         const ROWS: usize = 4;
-        let (px, py) = (self.plan.px, self.plan.py);
+        let (p, passes) = pass;
+        let px = self.plan.px;
         let kx = self.reach.0.k;
         let same = gs == fs;
-        let count = |(_, (lo, hi)): Fields| (hi - lo + 1).max(0) as usize;
-        let passes = self.passes(count(fs) + if same { 0 } else { count(gs) });
-        let len = py / passes;
+        let len = passes.len;
         let zero = C64::new(0.0, 0.0);
         let inv_x = &*self.plan.inv_x;
-        // Each pass's tasks (ROWS rows of y each, y = P·j + p), each row holding the row
-        // of every accumulator.
+        // The pass's tasks (ROWS rows of j each), each row holding the row of every
+        // accumulator: row i = j·r + t of the accumulators' pass.
+        let (r, t) = (passes.count / passes.acc, p / passes.acc);
         type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
-        let mut by_y: Vec<Rows<T>> = (0..py).map(|_| Vec::with_capacity(acc.len())).collect();
+        let mut by_j: Vec<Rows<T>> = (0..len).map(|_| Vec::with_capacity(acc.len())).collect();
         for a in acc.iter_mut() {
-            for (y, row) in a.chunks_exact_mut(px).enumerate() {
-                by_y[y].push(row);
+            let rows = a.chunks_exact_mut(px).skip(t).step_by(r);
+            for (j, row) in rows.enumerate() {
+                by_j[j].push(row);
             }
         }
-        let mut work: Vec<Vec<Vec<Rows<T>>>> = (0..passes)
-            .map(|_| {
-                (0..len.div_ceil(ROWS))
-                    .map(|_| Vec::with_capacity(ROWS))
-                    .collect()
-            })
+        let mut tasks: Vec<Vec<Rows<T>>> = (0..len.div_ceil(ROWS))
+            .map(|_| Vec::with_capacity(ROWS))
             .collect();
-        for (y, rows) in by_y.into_iter().enumerate() {
-            work[y % passes][y / passes / ROWS].push(rows);
+        for (j, rows) in by_j.into_iter().enumerate() {
+            tasks[j / ROWS].push(rows);
         }
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
@@ -217,53 +222,92 @@ impl TransformBound {
                 }
             }
         };
-        // The transform of a pass's share of the columns, planned once.
-        let short = (passes > 1).then(|| FftPlanner::new().plan_fft_inverse(len));
-        let inv = short.as_deref().unwrap_or(&*self.plan.inv_y);
-        for (p, tasks) in work.into_iter().enumerate() {
-            let pass = Pass::new(p, passes, py, inv);
-            let fields = |(f, e)| self.stage_one(b, f, e, &pass);
-            let f_one = fields(fs);
-            let g_one = if same { Vec::new() } else { fields(gs) };
-            let g_src = if same { &f_one } else { &g_one };
-            tasks.into_par_iter().enumerate().for_each_init(
-                || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                |(fr, gr, scratch, scratch_t), (c, mut out)| {
-                    let at_rows = (c * ROWS, out.len());
-                    rows_of(&f_one, at_rows, fr, scratch);
-                    if !same {
-                        rows_of(g_src, at_rows, gr, scratch);
-                    }
-                    let gr = if same { &*fr } else { &*gr };
-                    let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
-                    for (jj, rows) in out.iter_mut().enumerate() {
-                        let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
-                        let fv: [&[C64]; FIELDS] =
-                            std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
-                        let gv: [&[C64]; FIELDS] =
-                            std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
-                        add(rows, &fv, &gv);
-                        if last {
-                            for row in rows.iter_mut() {
-                                plan.forward_x(row, scratch_t);
-                            }
+        let pass = Pass::new(p, passes.count, self.plan.py, passes.inverse());
+        let fields = |(f, e)| self.stage_one(b, f, e, &pass);
+        let f_one = fields(fs);
+        let g_one = if same { Vec::new() } else { fields(gs) };
+        let g_src = if same { &f_one } else { &g_one };
+        tasks.into_par_iter().enumerate().for_each_init(
+            || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+            |(fr, gr, scratch, scratch_t), (c, mut out)| {
+                let at_rows = (c * ROWS, out.len());
+                rows_of(&f_one, at_rows, fr, scratch);
+                if !same {
+                    rows_of(g_src, at_rows, gr, scratch);
+                }
+                let gr = if same { &*fr } else { &*gr };
+                let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
+                for (jj, rows) in out.iter_mut().enumerate() {
+                    let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
+                    let fv: [&[C64]; FIELDS] =
+                        std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
+                    let gv: [&[C64]; FIELDS] =
+                        std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
+                    add(rows, &fv, &gv);
+                    if last {
+                        for row in rows.iter_mut() {
+                            plan.forward_x(row, scratch_t);
                         }
                     }
-                },
-            );
-            self.ones.give_all(f_one.into_iter().chain(g_one));
-        }
+                }
+            },
+        );
+        self.ones.give_all(f_one.into_iter().chain(g_one));
     }
 
-    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields: the least
-    /// divisor of py that holds at most [`PASS_BYTES_PER_CELL`] bytes an output cell of
-    /// them at once (each pass folds the components onto its share of the columns and
-    /// transforms that: the passes together cost about one whole transform).
-    fn passes(&self, ne: usize) -> usize {
+    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields and `accs`
+    /// accumulators of `cell` bytes a padded cell: the accumulators' P_a, the least
+    /// divisor of py that holds at most [`ACC_BYTES_PER_CELL`] bytes an output cell of
+    /// them at once (`acc_budget`), and the first stages' P, the least multiple of P_a dividing py that
+    /// holds at most [`PASS_BYTES_PER_CELL`] (each pass folds the components onto its
+    /// share of the columns and transforms that: the passes together cost about one
+    /// whole transform).
+    pub(super) fn passes(&self, ne: usize, (accs, cell): (usize, usize)) -> Passes {
         let py = self.plan.py;
+        let cells = self.spec.nx * self.spec.ny;
+        // The least divisor of py, a multiple of `of`, at or above `least`.
+        let divisor = |least: usize, of: usize| {
+            (least.clamp(1, py)..=py)
+                .find(|d| py % d == 0 && d % of == 0)
+                .unwrap_or(py)
+        };
+        let bytes = accs * self.plan.px * py * cell;
+        let acc = divisor(bytes.div_ceil((self.acc_budget * cells).max(1)), 1);
         let held = ne * (self.rows.len() - 1) * self.row_stride(py) * size_of::<C64>();
-        let cap = PASS_BYTES_PER_CELL * self.spec.nx * self.spec.ny;
-        let least = held.div_ceil(cap.max(1)).clamp(1, py);
-        (least..=py).find(|d| py % d == 0).unwrap_or(py)
+        let cap = PASS_BYTES_PER_CELL * cells;
+        let count = divisor(held.div_ceil(cap.max(1)), acc);
+        let len = py / count;
+        // The transform of a pass's share of the columns, planned once (one pass: the
+        // whole transform's).
+        let short = (count > 1).then(|| FftPlanner::new().plan_fft_inverse(len));
+        Passes {
+            count,
+            len,
+            acc,
+            acc_len: py / acc,
+            short,
+            whole: Arc::clone(&self.plan.inv_y),
+        }
+    }
+}
+
+/// The passes over y of the first stages ([`TransformBound::passes`]): `count` (P, a
+/// divisor of py) passes of `len` = py/P rows of y each, and the inverse transform of a
+/// pass's folded columns.
+pub(super) struct Passes {
+    pub(super) count: usize,
+    pub(super) len: usize,
+    /// The accumulators' passes (P_a, a divisor of P): pass a holds the rows of y
+    /// P_a·i + a (i < `acc_len` = py/P_a), those of the first stages' passes a + P_a·t,
+    /// t < P/P_a (row j of pass a + P_a·t is row i = j·P/P_a + t).
+    pub(super) acc: usize,
+    pub(super) acc_len: usize,
+    short: Option<Arc<dyn Fft<f64>>>,
+    whole: Arc<dyn Fft<f64>>,
+}
+
+impl Passes {
+    fn inverse(&self) -> &dyn Fft<f64> {
+        self.short.as_deref().unwrap_or(&*self.whole)
     }
 }

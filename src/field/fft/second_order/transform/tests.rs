@@ -39,7 +39,8 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
     // Every component of a small physical sea: the padded products and transforms give
     // the pair sum of the same kernels (sum and difference terms, the self-pairs, the
     // exact set-down and difference terms nearest q = 0, the dropped outputs), deep and
-    // finite depth, at two times.
+    // finite depth, at two times, with the accumulators built in several passes over y
+    // (each pass's transforms gathered with its twiddle) and in one.
     const TOL: f64 = 1e-5;
     for depth in [None, Some(8.0)] {
         let params = small_sea("size=40x36", depth);
@@ -50,7 +51,7 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
             let so = SecondOrder::new(&setup, 1.0);
             let (dkx, dky) = setup.dk();
             let kf = KernelFit::new(model.as_ref(), dispersion, Region::of(&setup), (dkx, dky));
-            let tb = TransformBound::new(so.components().to_vec(), spec, depth, kf.clone());
+            let mut tb = TransformBound::new(so.components().to_vec(), spec, depth, kf.clone());
             // The difference terms nearest q = 0 are the exact kernel's.
             let exact = |a: &Component, b: &Component| {
                 let t = outputs::output_t(spec, depth, a.n - b.n, a.m - b.m).3;
@@ -65,14 +66,25 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
                 },
             );
             let want = field_of(spec, |h| add_plane(&pairs.0, h));
-            let got = field_of(spec, |h| tb.add_to(&setup, h));
             let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
             assert!(scale > 0.0);
-            for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
-                assert!(
-                    (f64::from(g) - f64::from(w)).abs() <= TOL * scale,
-                    "depth {depth:?} t {t} sample {i}: {g} vs {w}"
-                );
+            // The accumulators in several passes over y (this small grid's budget), and
+            // in one (a budget that holds them all).
+            let (lo, hi) = kf.bases.exponents();
+            let split = tb.passes((hi - lo + 1) as usize, (9, 16)).acc;
+            assert!(
+                split > 1,
+                "the default budget splits this small grid's accumulators"
+            );
+            for budget in [stages::ACC_BYTES_PER_CELL, usize::MAX / (1 << 20)] {
+                tb.acc_budget = budget;
+                let got = field_of(spec, |h| tb.add_to(&setup, h));
+                for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
+                    assert!(
+                        (f64::from(g) - f64::from(w)).abs() <= TOL * scale,
+                        "depth {depth:?} t {t} budget {budget} sample {i}: {g} vs {w}"
+                    );
+                }
             }
         }
     }
