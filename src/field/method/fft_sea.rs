@@ -191,9 +191,10 @@ impl HeightMethod for FftSea {
         // method of every wave of the grid adds its components and about a dozen complex
         // f64 arrays of the grid padded by 3/2 per axis (`nonlinear_cutoff = inf`, q = 1);
         // within the convergence limit (or below q = 1) its padded arrays cover the box
-        // of the paired components, which the sea sets, not the grid (about 50 MB for a
-        // 15 m/s storm over 2 km), so they are not a cost a sample: it is counted as the
-        // pair sum's. `auto` may take either.
+        // of the paired components, which the sea sets, not the grid, and its
+        // accumulators and first stages hold at most 32 and 8 bytes an output cell (a
+        // share of the rows at a time beyond: `transform::stages`). `auto` may take
+        // either.
         let s = &self.params.spectrum;
         if s.nonlinear.is_linear() {
             return 10;
@@ -208,7 +209,7 @@ impl HeightMethod for FftSea {
         let fitted = if every_wave {
             10 + 88 + 12 * 16 * 9 / 4
         } else {
-            26
+            10 + 32 + 8
         };
         match s.nonlinear_method {
             NonlinearMethod::Pairs => pairs,
