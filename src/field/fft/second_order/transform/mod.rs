@@ -14,8 +14,8 @@
 //! q = 0 are their exact pair sums (`exact.rs`; the set-down Σ a_i² K⁻_ii at q = 0).
 
 use rayon::prelude::*;
+use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 
 use exact::Exact;
 use grid::{Plan, Pool, Reach};
@@ -289,15 +289,6 @@ impl TransformBound {
         // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
         let ox = self.reach.0.o;
         let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
-        // A pass's accumulators (its py/P rows of y, transformed along x) into their
-        // spectra along y at its length.
-        let transform = |passes: &Passes, fwd: Option<&dyn Fft<T>>, mut acc: Vec<Complex<T>>| {
-            plan.forward_y_rows(&mut acc, (passes.acc_len, fwd), &kept_row, pool);
-            acc
-        };
-        let short = |passes: &Passes| {
-            (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len))
-        };
         // The fields of exponent e are at index e − lo.
         let bases = &self.fit.bases;
         let (lo, hi) = bases.exponents();
@@ -353,44 +344,57 @@ impl TransformBound {
                 power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
             }
         };
-        // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each pass's added.
+        // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each share's added
+        // (made once the first share's products are done: not held beside its first
+        // stages).
         let ox_oy = (ox, self.reach.1.o);
         let columns = (2 * ox_oy.1 + 1).max(0) as usize;
-        // (Made once the first pass's products are done: not held beside its first stages.)
         let kept_len = (ox + 1).max(0) as usize * columns;
         let mut kept = Vec::new();
-        // The B terms, a pass over y at a time (the three factors' fields of one pass,
-        // then its accumulators' transforms gathered at the kept outputs).
+        // One set of terms (the B terms, `b_terms`, or the S·A terms) a share of the
+        // rows of y at a time ([`Passes`]): `run(p, acc)` adds the products of the first
+        // stages' pass p to the share's `n_acc` accumulators, whose transforms along y
+        // (at the share's length) are then gathered at the kept outputs.
+        let in_shares = |passes: &Passes,
+                         (n_acc, b_terms): (usize, bool),
+                         kept: &mut Vec<C64>,
+                         run: &mut dyn FnMut(usize, &mut Acc<T>)| {
+            let short =
+                (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len));
+            let fwd = (passes.acc_len, short.as_deref());
+            for a in 0..passes.acc {
+                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * passes.acc_len)).collect();
+                for p in (a..passes.count).step_by(passes.acc) {
+                    run(p, &mut acc);
+                }
+                if a + 1 == passes.acc {
+                    // (The first stages are done with until the next set of terms.)
+                    self.ones.clear();
+                }
+                kept.resize(kept_len, C64::new(0.0, 0.0));
+                for acc in acc.iter_mut() {
+                    plan.forward_y_rows(acc, fwd, &kept_row, pool);
+                }
+                self.gather(kept, &acc, &layout, (b_terms, (a, passes)));
+                pool.give_all(acc);
+            }
+        };
+        // The B terms: in each pass the three factors' products, V's the last.
         let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
         let cell = size_of::<Complex<T>>();
         let passes = self.passes((hi - lo + 1) as usize, (groups + 1, cell));
-        let fwd = short(&passes);
-        for a in 0..passes.acc {
-            let mut acc: Acc<T> = (0..=groups)
-                .map(|_| pool.take(px * passes.acc_len))
-                .collect();
+        in_shares(&passes, (groups + 1, true), &mut kept, &mut |p, acc| {
             for &(f, sign) in types {
                 let fe = (f, (lo, hi));
-                // (V's products are the last of the B terms.)
-                let last = f == Factor::V;
-                for p in (a..passes.count).step_by(passes.acc) {
-                    self.each_cell(b, (fe, fe), ((p, &passes), &mut acc), last, |c, q, _| {
-                        b_terms(f, sign, c, q)
-                    });
-                }
+                self.each_cell(
+                    b,
+                    (fe, fe),
+                    ((p, &passes), acc),
+                    f == Factor::V,
+                    |c, q, _| b_terms(f, sign, c, q),
+                );
             }
-            if a + 1 == passes.acc {
-                // (The first stages are done with until the finite-depth terms.)
-                self.ones.clear();
-            }
-            kept.resize(kept_len, C64::new(0.0, 0.0));
-            let transformed: Acc<T> = acc
-                .into_iter()
-                .map(|acc| transform(&passes, fwd.as_deref(), acc))
-                .collect();
-            self.gather(&mut kept, &transformed, &layout, (true, (a, &passes)));
-            pool.give_all(transformed);
-        }
+        });
         // (The B terms' arrays are not held through the finite-depth terms.)
         pool.clear();
         if finite {
@@ -427,24 +431,9 @@ impl TransformBound {
                 }
             };
             let passes = self.passes(2 * (hi - lo + 2) as usize, (groups, cell));
-            let fwd = short(&passes);
-            for a in 0..passes.acc {
-                let mut acc: Acc<T> = (0..groups)
-                    .map(|_| pool.take(px * passes.acc_len))
-                    .collect();
-                for p in (a..passes.count).step_by(passes.acc) {
-                    self.each_cell(b, (q_e, one_e), ((p, &passes), &mut acc), true, sa_terms);
-                }
-                if a + 1 == passes.acc {
-                    self.ones.clear();
-                }
-                let sa: Acc<T> = acc
-                    .into_iter()
-                    .map(|acc| transform(&passes, fwd.as_deref(), acc))
-                    .collect();
-                self.gather(&mut kept, &sa, &layout, (false, (a, &passes)));
-                pool.give_all(sa);
-            }
+            in_shares(&passes, (groups, false), &mut kept, &mut |p, acc| {
+                self.each_cell(b, (q_e, one_e), ((p, &passes), acc), true, sa_terms);
+            });
         }
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
         // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).

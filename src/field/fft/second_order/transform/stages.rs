@@ -151,9 +151,9 @@ impl TransformBound {
 
     /// `add(rows, f, g)` on every row of padded cells of pass `pass` (the rows of y
     /// P·j + p, j < py/P, [`Passes`]): the accumulators' row of y (`acc`: the py/P_a rows
-    /// of px of the accumulators' pass p mod P_a),
-    /// and the row of each field of `fs` and `gs` (the fields of the terms' factors, each
-    /// of its exponents lo ..= hi, index e − lo): the transforms' first stage
+    /// of px of the accumulators' pass p mod P_a), and the row of each field of `fs` and
+    /// `gs` (the fields of the terms' factors, each of its exponents lo ..= hi, index
+    /// e − lo): the transforms' first stage
     /// ([`Self::stage_one`]), the second (along kx) a few rows of y at a time, just
     /// before their products, so that no whole field is held. The same values as the
     /// whole fields' transforms (to rounding; the same bits in one pass). With `last`,
@@ -222,7 +222,7 @@ impl TransformBound {
                 }
             }
         };
-        let pass = Pass::new(p, passes.count, self.plan.py, passes.inverse());
+        let pass = Pass::new(p, passes.count, self.plan.py, &*passes.inverse);
         let fields = |(f, e)| self.stage_one(b, f, e, &pass);
         let f_one = fields(fs);
         let g_one = if same { Vec::new() } else { fields(gs) };
@@ -257,11 +257,11 @@ impl TransformBound {
 
     /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields and `accs`
     /// accumulators of `cell` bytes a padded cell: the accumulators' P_a, the least
-    /// divisor of py that holds at most [`ACC_BYTES_PER_CELL`] bytes an output cell of
-    /// them at once (`acc_budget`), and the first stages' P, the least multiple of P_a dividing py that
-    /// holds at most [`PASS_BYTES_PER_CELL`] (each pass folds the components onto its
-    /// share of the columns and transforms that: the passes together cost about one
-    /// whole transform).
+    /// divisor of py that holds at most `acc_budget` ([`ACC_BYTES_PER_CELL`]) bytes an
+    /// output cell of them at once, and the first stages' P, the least multiple of P_a
+    /// dividing py that holds at most [`PASS_BYTES_PER_CELL`] (each pass folds the
+    /// components onto its share of the columns and transforms that: the passes together
+    /// cost about one whole transform).
     pub(super) fn passes(&self, ne: usize, (accs, cell): (usize, usize)) -> Passes {
         let py = self.plan.py;
         let cells = self.spec.nx * self.spec.ny;
@@ -278,15 +278,17 @@ impl TransformBound {
         let count = divisor(held.div_ceil(cap.max(1)), acc);
         let len = py / count;
         // The transform of a pass's share of the columns, planned once (one pass: the
-        // whole transform's).
-        let short = (count > 1).then(|| FftPlanner::new().plan_fft_inverse(len));
+        // whole transform).
+        let inverse = match count {
+            1 => Arc::clone(&self.plan.inv_y),
+            _ => FftPlanner::new().plan_fft_inverse(len),
+        };
         Passes {
             count,
             len,
             acc,
             acc_len: py / acc,
-            short,
-            whole: Arc::clone(&self.plan.inv_y),
+            inverse,
         }
     }
 }
@@ -302,12 +304,5 @@ pub(super) struct Passes {
     /// t < P/P_a (row j of pass a + P_a·t is row i = j·P/P_a + t).
     pub(super) acc: usize,
     pub(super) acc_len: usize,
-    short: Option<Arc<dyn Fft<f64>>>,
-    whole: Arc<dyn Fft<f64>>,
-}
-
-impl Passes {
-    fn inverse(&self) -> &dyn Fft<f64> {
-        self.short.as_deref().unwrap_or(&*self.whole)
-    }
+    inverse: Arc<dyn Fft<f64>>,
 }

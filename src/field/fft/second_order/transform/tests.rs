@@ -39,8 +39,8 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
     // Every component of a small physical sea: the padded products and transforms give
     // the pair sum of the same kernels (sum and difference terms, the self-pairs, the
     // exact set-down and difference terms nearest q = 0, the dropped outputs), deep and
-    // finite depth, at two times, with the accumulators built in several passes over y
-    // (each pass's transforms gathered with its twiddle) and in one.
+    // finite depth, at two times, with the accumulators built in several shares of the
+    // rows of y (each share's transforms gathered with its twiddle) and in one.
     const TOL: f64 = 1e-5;
     for depth in [None, Some(8.0)] {
         let params = small_sea("size=40x36", depth);
@@ -68,16 +68,20 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
             let want = field_of(spec, |h| add_plane(&pairs.0, h));
             let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
             assert!(scale > 0.0);
-            // The accumulators in several passes over y (this small grid's budget), and
-            // in one (a budget that holds them all).
+            // The accumulators in several shares of the rows of y (this small grid's
+            // budget), and in one (a budget that holds them all): the B terms' shares
+            // (their 1 + groups accumulators, single precision in deep water).
             let (lo, hi) = kf.bases.exponents();
-            let split = tb.passes((hi - lo + 1) as usize, (9, 16)).acc;
-            assert!(
-                split > 1,
-                "the default budget splits this small grid's accumulators"
-            );
-            for budget in [stages::ACC_BYTES_PER_CELL, usize::MAX / (1 << 20)] {
+            let groups = products::Layout::new(kf.bases.len(0), kf.bases.len(1))
+                .slots
+                .len();
+            let cell = if depth.is_some() { 16 } else { 8 };
+            let shares =
+                |tb: &TransformBound| tb.passes((hi - lo + 1) as usize, (groups + 1, cell)).acc;
+            for (budget, split) in [(stages::ACC_BYTES_PER_CELL, true), (1 << 30, false)] {
                 tb.acc_budget = budget;
+                let n = shares(&tb);
+                assert_eq!(n > 1, split, "budget {budget}: {n} shares");
                 let got = field_of(spec, |h| tb.add_to(&setup, h));
                 for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
                     assert!(
