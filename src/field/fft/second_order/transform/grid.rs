@@ -141,24 +141,20 @@ impl<T: FftNum> Plan<T> {
         }
     }
 
-    /// Rows of `b` transformed by `fb` (rows of zeros stay zero; None: transformed
-    /// already), transposed, the rows of `a` that `wanted` names transformed by `fa` (the
-    /// others left as they are): `data` (a rows of b) becomes b rows of a.
+    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows of `a` transformed by `fa`: `data` (a rows of b)
+    /// becomes b rows of a.
     fn two_d(
         data: &mut Vec<Complex<T>>,
         (a, b): (usize, usize),
-        (fa, fb): (&dyn Fft<T>, Option<&dyn Fft<T>>),
-        wanted: &(dyn Fn(usize) -> bool + Sync),
+        (fa, fb): (&dyn Fft<T>, &dyn Fft<T>),
         pool: &Pool<T>,
     ) {
         let zero = Complex::zero();
-        if let Some(fb) = fb {
-            data.par_chunks_mut(b).for_each(|row| {
-                if row.iter().any(|v| *v != zero) {
-                    fb.process(row);
-                }
-            });
-        }
+        data.par_chunks_mut(b).for_each(|row| {
+            if row.iter().any(|v| *v != zero) {
+                fb.process(row);
+            }
+        });
         let src = &*data;
         let mut t = pool.take_any(a * b);
         // Blocked: each task writes TILE rows of t, reading TILE consecutive values of
@@ -176,24 +172,20 @@ impl<T: FftNum> Plan<T> {
                     }
                 }
             });
-        t.par_chunks_mut(a).enumerate().for_each(|(j, row)| {
-            if wanted(j) {
-                fa.process(row);
-            }
-        });
+        t.par_chunks_mut(a).for_each(|row| fa.process(row));
         pool.give(std::mem::replace(data, t));
     }
 
     /// Spectrum (px rows of py, kx by row) → field (py rows of px, y by row).
     pub(super) fn inverse(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
         let (fa, fb) = (&*self.inv_x, &*self.inv_y);
-        Self::two_d(data, (self.px, self.py), (fa, Some(fb)), &|_| true, pool);
+        Self::two_d(data, (self.px, self.py), (fa, fb), pool);
     }
 
     /// Field (py rows of px) → spectrum (px rows of py).
     pub(super) fn forward(&self, data: &mut Vec<Complex<T>>, pool: &Pool<T>) {
         let (fa, fb) = (&*self.fwd_y, &*self.fwd_x);
-        Self::two_d(data, (self.py, self.px), (fa, Some(fb)), &|_| true, pool);
+        Self::two_d(data, (self.py, self.px), (fa, fb), pool);
     }
 
     /// The forward transform along x of one row of px (`scratch` its scratch).
@@ -202,17 +194,8 @@ impl<T: FftNum> Plan<T> {
         self.fwd_x.process_with_scratch(row, scratch);
     }
 
-    /// Rows of y transformed along x already ([`Self::forward_x`]; `rows` of px) →
-    /// spectrum (px rows of `rows`) by `fwd` (of length `rows`; None: py's), on the kx
-    /// rows `wanted` names (the other rows hold the transforms along x).
-    pub(super) fn forward_y_rows(
-        &self,
-        data: &mut Vec<Complex<T>>,
-        (rows, fwd): (usize, Option<&dyn Fft<T>>),
-        wanted: &(dyn Fn(usize) -> bool + Sync),
-        pool: &Pool<T>,
-    ) {
-        let fwd = fwd.unwrap_or(&*self.fwd_y);
-        Self::two_d(data, (rows, self.px), (fwd, None), wanted, pool);
+    /// The forward transform along y (py values).
+    pub(super) fn forward_y(&self) -> &dyn Fft<T> {
+        &*self.fwd_y
     }
 }

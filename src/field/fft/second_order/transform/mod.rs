@@ -286,9 +286,7 @@ impl TransformBound {
         let (px, py) = (self.plan.px, self.plan.py);
         let finite = self.depth.is_some();
         let (plan, pool) = T::forward(self);
-        // Only the kx rows of the outputs kept (|n| ≤ o_x) are transformed.
         let ox = self.reach.0.o;
-        let kept_row = |row: usize| signed_index(row, px).abs() <= ox;
         // The fields of exponent e are at index e − lo.
         let bases = &self.fit.bases;
         let (lo, hi) = bases.exponents();
@@ -315,35 +313,37 @@ impl TransformBound {
         // Accumulator 0: the separable part B + R_i + R_j (sum re, difference im); 1 + g:
         // the weighted parts of the B terms (multiplied by 2T c) in `layout`'s slot g, and
         // at finite depth those of the S·A terms (by c, in `sa`, slot g at g).
-        let b_terms = |f: Factor, sign: f64, c: &mut [&mut [Complex<T>]], p: &[&[C64]]| {
-            if f == Factor::V {
-                // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
-                // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
-                let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
-                for ((c, r), o) in rows {
-                    c.re += T::of(2.0 * (r * o).re);
-                    c.im += T::of(2.0 * (r * o.conj()).re);
-                }
-            }
-            // The separable part's B.
-            for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
-                c.re += T::of(sign * (p0 * p0).re);
-                c.im += T::of((p0 * p0.conj()).re);
-            }
-            for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
-                for &(w, u, v) in &f.monomials {
-                    let k = sign * w;
-                    for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                        *part(c, im) += T::of(k * (a * b).re);
+        // `scale` multiplies every product (the V fields read from those of W0: s_p²).
+        let b_terms =
+            |f: Factor, (sign, scale): (f64, f64), c: &mut [&mut [Complex<T>]], p: &[&[C64]]| {
+                if f == Factor::V {
+                    // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
+                    // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
+                    let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
+                    for ((c, r), o) in rows {
+                        c.re += T::of(2.0 * scale * (r * o).re);
+                        c.im += T::of(2.0 * scale * (r * o.conj()).re);
                     }
                 }
-            }
-            let mut sum = Vec::new();
-            for (m, (t, &(g, im))) in halves.iter().zip(&layout.diff).enumerate() {
-                let p = &p[at(0)..];
-                power_term(c[1 + g], p, p, t, m, (1.0, im), &mut sum);
-            }
-        };
+                // The separable part's B.
+                for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
+                    c.re += T::of(sign * scale * (p0 * p0).re);
+                    c.im += T::of(scale * (p0 * p0.conj()).re);
+                }
+                for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
+                    for &(w, u, v) in &f.monomials {
+                        let k = sign * scale * w;
+                        for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
+                            *part(c, im) += T::of(k * (a * b).re);
+                        }
+                    }
+                }
+                let mut sum = Vec::new();
+                for (m, (t, &(g, im))) in halves.iter().zip(&layout.diff).enumerate() {
+                    let p = &p[at(0)..];
+                    power_term(c[1 + g], p, p, t, m, (scale, im), &mut sum);
+                }
+            };
         // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each share's added
         // (made once the first share's products are done: not held beside its first
         // stages).
@@ -351,60 +351,70 @@ impl TransformBound {
         let columns = (2 * ox_oy.1 + 1).max(0) as usize;
         let kept_len = (ox + 1).max(0) as usize * columns;
         let mut kept = Vec::new();
-        // One set of terms (the B terms, `b_terms`, or the S·A terms) a share of the
-        // rows of y at a time ([`Passes`]): `run(p, acc)` adds the products of the first
-        // stages' pass p to the share's `n_acc` accumulators, whose transforms along y
-        // (at the share's length) are then gathered at the kept outputs.
-        let in_shares = |passes: &Passes,
-                         (n_acc, b_terms): (usize, bool),
-                         kept: &mut Vec<C64>,
-                         run: &mut dyn FnMut(usize, &mut Acc<T>)| {
+        // The accumulators a share of the rows of y at a time ([`Passes`]): the B terms'
+        // (`groups` + 1: the separable part and the weighted parts, multiplied by 2T c),
+        // then at finite depth the S·A terms' (`groups`, by c). `run(a, acc)` adds the
+        // products of the first stages' passes of share a, whose transforms along y (at
+        // the share's length) are then gathered at the kept outputs.
+        let n_b = groups + 1;
+        let n_acc = n_b + if finite { groups } else { 0 };
+        let cell = size_of::<Complex<T>>();
+        let in_shares = |shares: &Passes, kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<T>)| {
             let short =
-                (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len));
-            let fwd = (passes.acc_len, short.as_deref());
-            for a in 0..passes.acc {
-                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * passes.acc_len)).collect();
-                for p in (a..passes.count).step_by(passes.acc) {
-                    run(p, &mut acc);
-                }
-                if a + 1 == passes.acc {
-                    // (The first stages are done with until the next set of terms.)
+                (shares.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(shares.acc_len));
+            let fwd = short.as_deref().unwrap_or(plan.forward_y());
+            for a in 0..shares.acc {
+                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * shares.acc_len)).collect();
+                run(a, &mut acc);
+                if a + 1 == shares.acc {
+                    // (The first stages are done with.)
                     self.ones.clear();
                 }
                 kept.resize(kept_len, C64::new(0.0, 0.0));
-                for acc in acc.iter_mut() {
-                    plan.forward_y_rows(acc, fwd, &kept_row, pool);
-                }
-                self.gather(kept, &acc, &layout, (b_terms, (a, passes)));
+                self.gather(kept, (&acc, n_b), &layout, (a, shares), fwd);
                 pool.give_all(acc);
             }
         };
-        // The B terms: in each pass the three factors' products, V's the last.
-        let types: &[(Factor, f64)] = &[(Factor::X, 1.0), (Factor::Y, 1.0), (Factor::V, -1.0)];
-        let cell = size_of::<Complex<T>>();
-        let passes = self.passes((hi - lo + 1) as usize, (groups + 1, cell));
-        in_shares(&passes, (groups + 1, true), &mut kept, &mut |p, acc| {
-            for &(f, sign) in types {
-                let fe = (f, (lo, hi));
-                self.each_cell(
-                    b,
-                    (fe, fe),
-                    ((p, &passes), acc),
-                    f == Factor::V,
-                    |c, q, _| b_terms(f, sign, c, q),
-                );
+        // The B terms' first stages: the fields of k_x/s and k_y/s, each factor's
+        // products in each pass.
+        let b_passes = self.passes((hi - lo + 1) as usize, (n_acc, cell));
+        let xy = |a: usize, acc: &mut [Vec<Complex<T>>], last: bool| {
+            for p in (a..b_passes.count).step_by(b_passes.acc) {
+                for f in [Factor::X, Factor::Y] {
+                    let fe = (f, (lo, hi));
+                    self.each_cell(
+                        b,
+                        (fe, fe),
+                        ((p, &b_passes), acc),
+                        last && f == Factor::Y,
+                        |c, q, _| b_terms(f, (1.0, 1.0), c, q),
+                    );
+                }
             }
-        });
-        // (The B terms' arrays are not held through the finite-depth terms.)
-        pool.clear();
-        if finite {
+        };
+        if !finite {
+            // Deep water: the V fields (s) their own, the last products.
+            in_shares(&b_passes, &mut kept, &|a, acc| {
+                xy(a, acc, false);
+                for p in (a..b_passes.count).step_by(b_passes.acc) {
+                    let fe = (Factor::V, (lo, hi));
+                    self.each_cell(b, (fe, fe), ((p, &b_passes), acc), true, |c, q, _| {
+                        b_terms(Factor::V, (-1.0, 1.0), c, q)
+                    });
+                }
+            });
+        } else {
             // S·A = Q_i + Q_j ± ((Q/s)_i s_j + s_i (Q/s)_j) (+ in the sum term, − in the
             // difference), each with its mirror (the expansion is symmetric in a ↔ 2m − a).
             // With x = |s|/s_p, (Q/s)·x^u is Q·x^{u−1}/s_p and s·x^v is s_p·x^{v+1}: the
             // fields of Q (W1) at the exponents lo − 1 ..= hi and of 1 (W0) at lo ..= hi + 1
-            // give both products (the s_p cancel).
+            // give both products (the s_p cancel). The B terms' V fields are those of W0
+            // at the exponent above, times s_p: their products are taken in the same pass.
             let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
+            let s_p2 = self.fit.s_ref * self.fit.s_ref;
             let sa_terms = |c: &mut [&mut [Complex<T>]], q: &[&[C64]], one: &[&[C64]]| {
+                let (cb, c) = c.split_at_mut(n_b);
+                b_terms(Factor::V, (-1.0, s_p2), cb, &one[1..]);
                 // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
                 let q_at = |e: i32| q[(e - lo + 1) as usize];
                 let one_at = |e: i32| one[(e - lo) as usize];
@@ -430,9 +440,12 @@ impl TransformBound {
                     power_term(c[g], q1, &one[at(1)..], t, m, (-2.0, im), &mut sum);
                 }
             };
-            let passes = self.passes(2 * (hi - lo + 2) as usize, (groups, cell));
-            in_shares(&passes, (groups, false), &mut kept, &mut |p, acc| {
-                self.each_cell(b, (q_e, one_e), ((p, &passes), acc), true, sa_terms);
+            let sa_passes = self.passes(2 * (hi - lo + 2) as usize, (n_acc, cell));
+            in_shares(&b_passes, &mut kept, &|a, acc| {
+                xy(a, &mut acc[..n_b], false);
+                for p in (a..sa_passes.count).step_by(sa_passes.acc) {
+                    self.each_cell(b, (q_e, one_e), ((p, &sa_passes), acc), true, sa_terms);
+                }
             });
         }
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on

@@ -5,12 +5,13 @@
 use std::f64::consts::TAU;
 
 use rayon::prelude::*;
+use rustfft::Fft;
 use rustfft::num_complex::Complex;
 
 use super::super::C64;
 use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
-use super::products::{Acc, Layout, Part, Real, wide};
+use super::products::{Layout, Part, Real, wide};
 use super::stages::Passes;
 use crate::grid::GridSpec;
 
@@ -98,26 +99,32 @@ impl TransformBound {
         self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
     }
 
-    /// Adds the transforms `accs` of the accumulators' pass p of `passes` (px rows of its
-    /// py/P_a values of ky, [`super::stages::Passes`]) at each kept output (lines 0 ..= o_x, columns
-    /// −o_y ..= o_y) to `kept`: the B terms' (`b_terms`: the separable part, then the
-    /// slots of `layout` times 2T and their output coefficients), or the S·A terms' (the
-    /// slots times their coefficients). A pass's transform at ky index m is the whole
-    /// transform's part of its rows of y: times e^{−2πi m p/py}, the passes add up to the
-    /// whole. In one pass, the same sums as one pass over both terms.
+    /// Transforms the accumulators `accs` of share p of `passes` along y and adds them at
+    /// each kept output (lines 0 ..= o_x, columns −o_y ..= o_y) to `kept`. `accs` are the
+    /// share's py/P_a rows of y of px, transformed along x already
+    /// ([`super::stages::Passes`]); `fwd` transforms py/P_a values. The first `n_b` are
+    /// the B terms' (the separable part, then the slots of `layout` times 2T and their
+    /// output coefficients), the rest the S·A terms' (the slots times their
+    /// coefficients). A few output lines n at a time, the columns n and −n of every
+    /// accumulator are copied out and transformed there (no whole transposed array is
+    /// made, and only the kept lines' columns are transformed). A share's transform at
+    /// ky index m is the whole transform's part of its rows of y: times e^{−2πi m p/py},
+    /// the shares add up to the whole.
     pub(super) fn gather<T: Real>(
         &self,
         kept: &mut [C64],
-        accs: &Acc<T>,
+        (accs, n_b): (&[Vec<Complex<T>>], usize),
         layout: &Layout,
-        (b_terms, (p, passes)): (bool, (usize, &Passes)),
+        (p, passes): (usize, &Passes),
+        fwd: &dyn Fft<T>,
     ) {
         let (px, py) = (self.plan.px, self.plan.py);
         let len = passes.acc_len;
+        debug_assert_eq!(fwd.len(), len);
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
-        // e^{−2πi k/py} of k < py (the passes' twiddles; none in one pass).
+        // e^{−2πi k/py} of k < py (the shares' twiddles; none in one share).
         let turns: Vec<C64> = match passes.acc {
             1 => Vec::new(),
             _ => (0..py)
@@ -125,61 +132,94 @@ impl TransformBound {
                 .collect(),
         };
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
-        kept.par_chunks_mut(columns.max(1))
+        // Output lines a task: their columns n (and −n) are neighbours in each row.
+        const LINES: usize = 4;
+        let zero = Complex::new(T::of(0.0), T::of(0.0));
+        kept.par_chunks_mut((columns * LINES).max(1))
             .enumerate()
-            .for_each(|(n, line)| {
-                // Without the table, the line's coefficients once for ±m.
-                let of_line: Vec<_> = match outputs {
-                    Some(_) => Vec::new(),
-                    None => (0..=oy)
-                        .map(|m| coefficients_at(&self.fit, self.spec, depth, n as i64, m))
-                        .collect(),
-                };
-                let n = n as i64;
-                for (j, h) in line.iter_mut().enumerate() {
-                    let m = j as i64 - oy;
-                    let (ky, ky_neg) = (m.rem_euclid(py as i64), (-m).rem_euclid(py as i64));
-                    let here = n.rem_euclid(px as i64) as usize * len + ky as usize % len;
-                    let there = (-n).rem_euclid(px as i64) as usize * len + ky_neg as usize % len;
-                    // The sum (re) and difference (im) parts of a packed transform.
-                    let unpack = |f: &[Complex<T>]| {
-                        let (a, b) = (wide(f[here]), wide(f[there]).conj());
-                        (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
-                    };
-                    let (cp, cm, t) = match outputs {
-                        Some(o) => o.at(n as usize, m.unsigned_abs() as usize),
-                        None => of_line[m.unsigned_abs() as usize],
-                    };
-                    // (The difference terms nearest q = 0 are their pairs', [`Exact`].)
-                    let exact_diff = t <= self.exact.t_max;
-                    // A slot's part times its output coefficient (`k` 2T for the B terms,
-                    // 1 for the S·A terms).
-                    let weighted = |v: C64, p: Option<Part>, k: f64| match p {
-                        Some(Part::Sum(l)) => v * (k * cp[l]),
-                        Some(Part::Diff(m)) if !exact_diff => v * (k * cm[m]),
-                        _ => C64::new(0.0, 0.0),
-                    };
-                    // In one pass, into the output itself; else this pass's part, then
-                    // added with its twiddle.
-                    let mut part = C64::new(0.0, 0.0);
-                    let into = if turns.is_empty() { &mut *h } else { &mut part };
-                    if b_terms {
-                        let (s, d) = unpack(&accs[0]);
-                        *into = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
-                        for (f, slot) in accs[1..].iter().zip(&layout.slots) {
-                            let (s, d) = unpack(f);
-                            *into += weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+            .for_each_init(
+                || (Vec::new(), Vec::new()),
+                |(cols, scratch), (c, lines)| {
+                    let n0 = c * LINES;
+                    let nl = lines.len() / columns.max(1);
+                    // Column l < nl of accumulator f is line n0 + l's (x = n), column
+                    // nl + l its mirror's (x = −n): at `(f·2nl + column)·len`.
+                    let xs: Vec<usize> = (0..2 * nl)
+                        .map(|l| {
+                            let n = (n0 + l % nl) as i64;
+                            (if l < nl { n } else { -n }).rem_euclid(px as i64) as usize
+                        })
+                        .collect();
+                    cols.resize(accs.len() * 2 * nl * len, zero);
+                    scratch.resize(fwd.get_inplace_scratch_len(), zero);
+                    for (f, acc) in accs.iter().enumerate() {
+                        let block = &mut cols[f * 2 * nl * len..(f + 1) * 2 * nl * len];
+                        for (i, row) in acc.chunks_exact(px).enumerate() {
+                            for (l, &x) in xs.iter().enumerate() {
+                                block[l * len + i] = row[x];
+                            }
                         }
-                    } else {
-                        for (f, slot) in accs.iter().zip(&layout.slots) {
-                            let (s, d) = unpack(f);
-                            *into += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                        for col in block.chunks_exact_mut(len) {
+                            fwd.process_with_scratch(col, scratch);
                         }
                     }
-                    if !turns.is_empty() {
-                        *h += turns[(ky as usize * p) % py] * part;
+                    for (l, line) in lines.chunks_exact_mut(columns).enumerate() {
+                        let n = (n0 + l) as i64;
+                        // Without the table, the line's coefficients once for ±m.
+                        let of_line: Vec<_> = match outputs {
+                            Some(_) => Vec::new(),
+                            None => (0..=oy)
+                                .map(|m| coefficients_at(&self.fit, self.spec, depth, n, m))
+                                .collect(),
+                        };
+                        for (j, h) in line.iter_mut().enumerate() {
+                            let m = j as i64 - oy;
+                            let (ky, ky_neg) =
+                                (m.rem_euclid(py as i64), (-m).rem_euclid(py as i64));
+                            let here = l * len + ky as usize % len;
+                            let there = (nl + l) * len + ky_neg as usize % len;
+                            // The sum (re) and difference (im) parts of accumulator f's
+                            // packed transform.
+                            let unpack = |f: usize| {
+                                let at = f * 2 * nl * len;
+                                let (a, b) = (wide(cols[at + here]), wide(cols[at + there]).conj());
+                                (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
+                            };
+                            let (cp, cm, t) = match outputs {
+                                Some(o) => o.at(n as usize, m.unsigned_abs() as usize),
+                                None => of_line[m.unsigned_abs() as usize],
+                            };
+                            // (The difference terms nearest q = 0 are their pairs',
+                            // [`Exact`].)
+                            let exact_diff = t <= self.exact.t_max;
+                            // A slot's part times its output coefficient (`k` 2T for the
+                            // B terms, 1 for the S·A terms).
+                            let weighted = |v: C64, p: Option<Part>, k: f64| match p {
+                                Some(Part::Sum(l)) => v * (k * cp[l]),
+                                Some(Part::Diff(m)) if !exact_diff => v * (k * cm[m]),
+                                _ => C64::new(0.0, 0.0),
+                            };
+                            // In one share, into the output itself; else this share's
+                            // part, then added with its twiddle.
+                            let mut part = C64::new(0.0, 0.0);
+                            let into = if turns.is_empty() { &mut *h } else { &mut part };
+                            let (s, d) = unpack(0);
+                            *into = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
+                            for (f, slot) in (1..n_b).zip(&layout.slots) {
+                                let (s, d) = unpack(f);
+                                *into +=
+                                    weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
+                            }
+                            for (f, slot) in (n_b..accs.len()).zip(&layout.slots) {
+                                let (s, d) = unpack(f);
+                                *into += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                            }
+                            if !turns.is_empty() {
+                                *h += turns[(ky as usize * p) % py] * part;
+                            }
+                        }
                     }
-                }
-            });
+                },
+            );
     }
 }

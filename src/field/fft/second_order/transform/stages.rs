@@ -13,7 +13,7 @@ use rustfft::{Fft, FftPlanner};
 
 use super::super::C64;
 use super::super::fit::POWERS;
-use super::products::{Acc, Real};
+use super::products::Real;
 use super::{TransformBound, Wave};
 
 /// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
@@ -163,7 +163,7 @@ impl TransformBound {
         &self,
         b: &[C64],
         (fs, gs): (Fields, Fields),
-        (pass, acc): ((usize, &Passes), &mut Acc<T>),
+        (pass, acc): ((usize, &Passes), &mut [Vec<Complex<T>>]),
         last: bool,
         add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
     ) {
