@@ -207,6 +207,10 @@ pub struct SecondOrderInfo {
     /// The fitted kernels' estimated rms error, as a fraction of the bound waves' rms.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_rel_rms_error: Option<f64>,
+    /// The fitted difference term's powers m ≤ M of (δ²/T)^m / T (3 in deep water; at
+    /// finite depth 3 where the fit's estimate with them is within `auto`'s bound, else 4).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub difference_powers: Option<usize>,
     /// Why `nonlinear_method = auto` chose the method (absent: it was asked for).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub method_reason: Option<String>,

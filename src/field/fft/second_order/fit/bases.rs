@@ -8,9 +8,12 @@ use super::{MAX_NB, POWERS};
 /// The deep-water sum basis: the exponents u of w_u(s) = (|s|/s_p)^u whose symmetric
 /// products (u ≤ v) it takes.
 const DEEP_EXPONENTS: [i32; 3] = [-1, 0, 1];
-/// The powers m ≤ M of the difference term's basis (δ²/T)^m / T: deep water, finite depth.
+/// The powers m ≤ M of the difference term's basis (δ²/T)^m / T: deep water, finite depth
+/// (the fuller basis), and finite depth where the fit's estimate with it is within what
+/// `auto` accepts ([`crate::config::AUTO_MAX_ESTIMATE`]; two fields a factor fewer).
 const DEEP_DIFF_POWERS: usize = 3;
 const FINITE_DIFF_POWERS: usize = 4;
+pub(super) const FINITE_LIGHT_DIFF_POWERS: usize = 3;
 /// The order of the finite-depth sum basis (the terms of its Neumann series, m ≤ M).
 pub(super) const FINITE_NEUMANN_ORDER: usize = 3;
 
@@ -104,6 +107,14 @@ impl Bases {
             sum,
             diff_powers,
             sum_exponents: (lo, hi),
+        }
+    }
+
+    /// The same sum basis with the difference powers m ≤ `diff_powers`.
+    pub fn with_diff_powers(self, diff_powers: usize) -> Self {
+        Self {
+            diff_powers,
+            ..self
         }
     }
 

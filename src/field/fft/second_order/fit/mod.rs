@@ -45,10 +45,12 @@
 //! η2's rms in deep water and at depths of 0.2–0.05 peak wavelengths (0.2–0.3 % at 0.1 λp);
 //! the default `auto` takes the fitted method where the estimate is within its margin.
 
+use crate::config::AUTO_MAX_ESTIMATE;
 use crate::spectrum::{Dispersion, Spectrum};
 use rayon::prelude::*;
 
 use super::Component;
+use bases::FINITE_LIGHT_DIFF_POWERS;
 pub use bases::{Bases, SumTerm, binomial};
 use sample::{Sampler, spectrum_sample, uniform};
 
@@ -222,6 +224,31 @@ impl KernelFit {
         region: Region,
         dk: (f64, f64),
     ) -> Self {
+        let fit = |bases: Bases| Self::with_bases(spectrum, dispersion, region, dk, bases);
+        match dispersion {
+            Dispersion::Deep => fit(Bases::for_depth(None)),
+            Dispersion::Finite { depth_m } => {
+                // The lighter difference basis where its estimate is within what `auto`
+                // accepts, else the fuller one.
+                let fuller = Bases::for_depth(Some(depth_m));
+                let light = fit(fuller.clone().with_diff_powers(FINITE_LIGHT_DIFF_POWERS));
+                if light.rel_rms_error <= AUTO_MAX_ESTIMATE {
+                    light
+                } else {
+                    fit(fuller)
+                }
+            }
+        }
+    }
+
+    /// [`Self::new`] with the bases `bases`.
+    pub fn with_bases(
+        spectrum: &dyn Spectrum,
+        dispersion: Dispersion,
+        region: Region,
+        dk: (f64, f64),
+        bases: Bases,
+    ) -> Self {
         let depth = match dispersion {
             Dispersion::Deep => None,
             Dispersion::Finite { depth_m } => Some(depth_m),
@@ -233,7 +260,6 @@ impl KernelFit {
         let nodes: Vec<f64> = (0..qn_count)
             .map(|i| q_max.sqrt() * i as f64 / (qn_count - 1) as f64)
             .collect();
-        let bases = Bases::for_depth(depth);
         let empty = |term: usize| vec![vec![0.0; bases.len(term)]; qn_count * na];
         if waves.is_empty() {
             return Self {

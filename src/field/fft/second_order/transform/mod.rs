@@ -195,6 +195,7 @@ impl TransformBound {
         info.sum_pairs_dropped = sums;
         info.difference_pairs_dropped = diffs;
         info.estimated_rel_rms_error = Some(me.fit.rel_rms_error);
+        info.difference_powers = Some(me.fit.bases.diff_powers);
         (me, info)
     }
 
@@ -377,7 +378,15 @@ impl TransformBound {
         };
         // The B terms' first stages: the fields of k_x/s and k_y/s, each factor's
         // products in each pass.
-        let b_passes = self.passes((hi - lo + 1) as usize, (n_acc, cell));
+        // The passes over y: in deep water those of a B factor's fields; at finite depth
+        // those of the S·A terms' two factors, for the B terms' too (the first stages'
+        // arrays, reused from pass to pass, then all of one length).
+        let fields = if finite {
+            2 * (hi - lo + 2)
+        } else {
+            hi - lo + 1
+        };
+        let b_passes = self.passes(fields as usize, (n_acc, cell));
         let xy = |a: usize, acc: &mut [Vec<Complex<T>>], last: bool| {
             for p in (a..b_passes.count).step_by(b_passes.acc) {
                 for f in [Factor::X, Factor::Y] {

@@ -1,6 +1,7 @@
 use super::*;
 use crate::field::fft::InverseFft2;
 use crate::field::fft::second_order::add_plane;
+use crate::field::fft::second_order::fit::Bases;
 use crate::field::fft::second_order::tests::{params_of, small_sea};
 use crate::field::fft::second_order::{Cutoff, SecondOrder};
 use rustfft::num_complex::Complex32;
@@ -50,44 +51,63 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
             let setup = setup_at(spec, model.as_ref(), dispersion, 3, t);
             let so = SecondOrder::new(&setup, 1.0);
             let (dkx, dky) = setup.dk();
-            let kf = KernelFit::new(model.as_ref(), dispersion, Region::of(&setup), (dkx, dky));
-            let mut tb = TransformBound::new(so.components().to_vec(), spec, depth, kf.clone());
-            // The difference terms nearest q = 0 are the exact kernel's.
-            let exact = |a: &Component, b: &Component| {
-                let t = outputs::output_t(spec, depth, a.n - b.n, a.m - b.m).3;
-                t <= tb.exact.t_max
-            };
-            let pairs = so.bound_plane_by(
-                &setup,
-                |a, b, _| kf.kernel(a, b, 1.0, depth).0,
-                |a, b| match exact(a, b) {
-                    true => crate::field::fft::second_order::kernel_minus(a, b, depth),
-                    false => kf.kernel(a, b, -1.0, depth).0,
-                },
-            );
-            let want = field_of(spec, |h| add_plane(&pairs.0, h));
-            let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
-            assert!(scale > 0.0);
-            // The accumulators in several shares of the rows of y (this small grid's
-            // budget), and in one (a budget that holds them all): the B terms' shares
-            // (their 1 + groups accumulators, single precision in deep water).
-            let (lo, hi) = kf.bases.exponents();
-            let groups = products::Layout::new(kf.bases.len(0), kf.bases.len(1))
-                .slots
-                .len();
-            let cell = if depth.is_some() { 16 } else { 8 };
-            let shares =
-                |tb: &TransformBound| tb.passes((hi - lo + 1) as usize, (groups + 1, cell)).acc;
-            for (budget, split) in [(stages::ACC_BYTES_PER_CELL, true), (1 << 30, false)] {
-                tb.acc_budget = budget;
-                let n = shares(&tb);
-                assert_eq!(n > 1, split, "budget {budget}: {n} shares");
-                let got = field_of(spec, |h| tb.add_to(&setup, h));
-                for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
-                    assert!(
-                        (f64::from(g) - f64::from(w)).abs() <= TOL * scale,
-                        "depth {depth:?} t {t} budget {budget} sample {i}: {g} vs {w}"
-                    );
+            let region = Region::of(&setup);
+            let kf = KernelFit::new(model.as_ref(), dispersion, region, (dkx, dky));
+            // At finite depth both difference bases (m ≤ 3 and m ≤ 4), whichever the fit
+            // takes by its estimate.
+            let mut fits = vec![kf.clone()];
+            if depth.is_some() {
+                let other = if kf.bases.diff_powers == 3 { 4 } else { 3 };
+                let bases = Bases::for_depth(depth).with_diff_powers(other);
+                fits.push(KernelFit::with_bases(
+                    model.as_ref(),
+                    dispersion,
+                    region,
+                    (dkx, dky),
+                    bases,
+                ));
+            }
+            for kf in fits {
+                let mut tb = TransformBound::new(so.components().to_vec(), spec, depth, kf.clone());
+                // The difference terms nearest q = 0 are the exact kernel's.
+                let exact = |a: &Component, b: &Component| {
+                    let t = outputs::output_t(spec, depth, a.n - b.n, a.m - b.m).3;
+                    t <= tb.exact.t_max
+                };
+                let pairs = so.bound_plane_by(
+                    &setup,
+                    |a, b, _| kf.kernel(a, b, 1.0, depth).0,
+                    |a, b| match exact(a, b) {
+                        true => crate::field::fft::second_order::kernel_minus(a, b, depth),
+                        false => kf.kernel(a, b, -1.0, depth).0,
+                    },
+                );
+                let want = field_of(spec, |h| add_plane(&pairs.0, h));
+                let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
+                assert!(scale > 0.0);
+                // The accumulators in several shares of the rows of y (this small grid's
+                // budget), and in one (a budget that holds them all): the B terms' shares
+                // (their 1 + groups accumulators, single precision in deep water).
+                let (lo, hi) = kf.bases.exponents();
+                let groups = products::Layout::new(kf.bases.len(0), kf.bases.len(1))
+                    .slots
+                    .len();
+                let cell = if depth.is_some() { 16 } else { 8 };
+                // (At finite depth the S·A terms' accumulators are held beside them.)
+                let accs = groups + 1 + if depth.is_some() { groups } else { 0 };
+                let shares =
+                    |tb: &TransformBound| tb.passes((hi - lo + 1) as usize, (accs, cell)).acc;
+                for (budget, split) in [(stages::ACC_BYTES_PER_CELL, true), (1 << 30, false)] {
+                    tb.acc_budget = budget;
+                    let n = shares(&tb);
+                    assert_eq!(n > 1, split, "budget {budget}: {n} shares");
+                    let got = field_of(spec, |h| tb.add_to(&setup, h));
+                    for (i, (&g, &w)) in got.iter().zip(&want).enumerate() {
+                        assert!(
+                            (f64::from(g) - f64::from(w)).abs() <= TOL * scale,
+                            "depth {depth:?} t {t} budget {budget} sample {i}: {g} vs {w}"
+                        );
+                    }
                 }
             }
         }
@@ -416,6 +436,56 @@ fn the_bound_waves_beyond_the_limit() {
             rms_of(&cut),
             rms_of(&rest)
         );
+    }
+}
+
+#[test]
+fn at_finite_depth_the_fit_takes_the_lighter_difference_basis_within_autos_bound() {
+    // PM 15 m/s, Hasselmann, 256² over 1024 m, the waves within the convergence limit: at
+    // 40 and 19 m the difference powers m ≤ 3 are within AUTO_MAX_ESTIMATE and taken (two
+    // fields a factor fewer); at 10 m they are not, and the fit takes m ≤ 4, whose
+    // estimate is the smaller. Deep water has m ≤ 3.
+    use crate::config::AUTO_MAX_ESTIMATE;
+    for (depth, want) in [("depth=40", 3), ("depth=19", 3), ("depth=10", 4), ("", 3)] {
+        let mut sets = vec![
+            "method=fft",
+            "wind-speed=15",
+            "size=256",
+            "extent=1024",
+            "spectrum=pierson-moskowitz",
+            "spectrum.spreading=hasselmann",
+        ];
+        sets.extend((!depth.is_empty()).then_some(depth));
+        let params = params_of(&sets);
+        let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+        let setup = setup_at(params.grid_spec(), model.as_ref(), dispersion, 7, 0.0);
+        let so = SecondOrder::within(&setup, 1.0, Some(Cutoff::of(&setup, 2.0)));
+        let region = TransformBound::region(&setup, so.components(), 1.0);
+        let kf = TransformBound::fit_for(&setup, &so);
+        let light = |m| {
+            let bases = Bases::for_depth(setup_depth(dispersion)).with_diff_powers(m);
+            KernelFit::with_bases(model.as_ref(), dispersion, region, setup.dk(), bases)
+        };
+        eprintln!(
+            "{depth}: m ≤ {}, estimate {:.4}",
+            kf.bases.diff_powers, kf.rel_rms_error
+        );
+        assert_eq!(kf.bases.diff_powers, want, "{depth}");
+        if want == 3 {
+            assert!(kf.rel_rms_error <= AUTO_MAX_ESTIMATE, "{depth}");
+        } else {
+            let lighter = light(3).rel_rms_error;
+            assert!(lighter > AUTO_MAX_ESTIMATE, "{depth}: {lighter}");
+            assert!(kf.rel_rms_error < lighter, "{depth}");
+        }
+    }
+}
+
+/// The depth of a dispersion (None: deep water).
+fn setup_depth(dispersion: crate::spectrum::Dispersion) -> Option<f64> {
+    match dispersion {
+        crate::spectrum::Dispersion::Deep => None,
+        crate::spectrum::Dispersion::Finite { depth_m } => Some(depth_m),
     }
 }
 
