@@ -557,6 +557,24 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
     for r in ratios {
         assert!(r.is_finite() && r > 0.0, "{line}");
     }
+    // It names the method `auto` took for the same sea (the pair sum where the fit's
+    // estimate is above its bound: at 256² over 2048 m the waves within the limit reach
+    // Nyquist).
+    let sets: Vec<&str> = BASE
+        .iter()
+        .map(|s| if s.starts_with("size=") { "size=64" } else { s })
+        .chain(["nonlinear=second-order"])
+        .collect();
+    let took = synthesize(&params(&sets))
+        .unwrap()
+        .info
+        .second_order
+        .and_then(|s| s.method)
+        .expect("a second-order method");
+    assert!(
+        line.contains(&format!("(auto took {took})")),
+        "{took}: {line}"
+    );
 }
 
 #[test]
