@@ -49,7 +49,7 @@ use crate::config::AUTO_MAX_ESTIMATE;
 use crate::spectrum::{Dispersion, Spectrum};
 use rayon::prelude::*;
 
-use super::Component;
+use super::{Component, depth_of};
 use bases::FINITE_LIGHT_DIFF_POWERS;
 pub use bases::{Bases, SumTerm, binomial};
 use sample::{Sampler, spectrum_sample, uniform};
@@ -224,7 +224,9 @@ impl KernelFit {
         region: Region,
         dk: (f64, f64),
     ) -> Self {
-        let fit = |bases: Bases| Self::with_bases(spectrum, dispersion, region, dk, bases);
+        // (The spectrum's sample does not depend on the bases: drawn once.)
+        let sample = spectrum_sample(spectrum, dispersion, region, dk);
+        let fit = |bases: Bases| Self::of_sample(&sample, depth_of(dispersion), region, bases);
         match dispersion {
             Dispersion::Deep => fit(Bases::for_depth(None)),
             Dispersion::Finite { depth_m } => {
@@ -249,11 +251,18 @@ impl KernelFit {
         dk: (f64, f64),
         bases: Bases,
     ) -> Self {
-        let depth = match dispersion {
-            Dispersion::Deep => None,
-            Dispersion::Finite { depth_m } => Some(depth_m),
-        };
-        let (waves, weights) = spectrum_sample(spectrum, dispersion, region, dk);
+        let sample = spectrum_sample(spectrum, dispersion, region, dk);
+        Self::of_sample(&sample, depth_of(dispersion), region, bases)
+    }
+
+    /// The fit of the bases `bases` to the pairs of the spectrum's sample `(waves,
+    /// weights)` ([`spectrum_sample`]) at depth `depth`.
+    fn of_sample(
+        (waves, weights): &(Vec<Component>, Vec<f64>),
+        depth: Option<f64>,
+        region: Region,
+        bases: Bases,
+    ) -> Self {
         let bounds = region.outputs;
         let q_max = bounds.kx_max.hypot(bounds.ky_max);
         let (qn_count, na) = (Q_NODES, ANGLE_NODES);
@@ -277,7 +286,7 @@ impl KernelFit {
             .max_by(|&a, &b| weights[a].total_cmp(&weights[b]))
             .expect("non-empty");
         let s_ref = waves[ip].s;
-        let sampler = Sampler::new(&weights);
+        let sampler = Sampler::new(weights);
         // The drawn pairs of draw stream `salt` of two different waves whose sum (`sign`
         // = 1) or difference (−1) falls on the grid, with the split of their kernel.
         let (waves, sampler) = (&waves[..], &sampler);

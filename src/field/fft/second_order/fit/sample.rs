@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::super::Component;
+use super::super::{Component, depth_of};
 use super::Region;
 use crate::rng::mix64;
 use crate::spectrum::{Dispersion, Spectrum};
@@ -21,10 +21,7 @@ pub(super) fn spectrum_sample(
     dk: (f64, f64),
 ) -> (Vec<Component>, Vec<f64>) {
     let bounds = region.waves;
-    let depth = match dispersion {
-        Dispersion::Deep => None,
-        Dispersion::Finite { depth_m } => Some(depth_m),
-    };
+    let depth = depth_of(dispersion);
     let k_lo = dk.0.min(dk.1);
     let k_hi = bounds.kx_max.hypot(bounds.ky_max);
     let ratio = (k_hi / k_lo).ln();

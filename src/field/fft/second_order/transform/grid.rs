@@ -141,8 +141,8 @@ impl<T: FftNum> Plan<T> {
         }
     }
 
-    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows of `a` transformed by `fa`: `data` (a rows of b)
-    /// becomes b rows of a.
+    /// Rows of `b` transformed by `fb` (rows of zeros stay zero), transposed, the rows of
+    /// `a` transformed by `fa`: `data` (a rows of b) becomes b rows of a.
     fn two_d(
         data: &mut Vec<Complex<T>>,
         (a, b): (usize, usize),

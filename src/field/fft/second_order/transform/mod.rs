@@ -21,7 +21,7 @@ use exact::Exact;
 use grid::{Plan, Pool, Reach};
 use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
-use stages::{FIELDS, Factor, Passes};
+use stages::{FIELDS, Factor};
 
 use super::fit::{Box2, KernelFit, MAX_NB, Region};
 use super::{
@@ -360,24 +360,6 @@ impl TransformBound {
         let n_b = groups + 1;
         let n_acc = n_b + if finite { groups } else { 0 };
         let cell = size_of::<Complex<T>>();
-        let in_shares = |shares: &Passes, kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<T>)| {
-            let short =
-                (shares.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(shares.acc_len));
-            let fwd = short.as_deref().unwrap_or(plan.forward_y());
-            for a in 0..shares.acc {
-                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * shares.acc_len)).collect();
-                run(a, &mut acc);
-                if a + 1 == shares.acc {
-                    // (The first stages are done with.)
-                    self.ones.clear();
-                }
-                kept.resize(kept_len, C64::new(0.0, 0.0));
-                self.gather(kept, (&acc, n_b), &layout, (a, shares), fwd);
-                pool.give_all(acc);
-            }
-        };
-        // The B terms' first stages: the fields of k_x/s and k_y/s, each factor's
-        // products in each pass.
         // The passes over y: in deep water those of a B factor's fields; at finite depth
         // those of the S·A terms' two factors, for the B terms' too (the first stages'
         // arrays, reused from pass to pass, then all of one length).
@@ -386,28 +368,44 @@ impl TransformBound {
         } else {
             hi - lo + 1
         };
-        let b_passes = self.passes(fields as usize, (n_acc, cell));
-        let xy = |a: usize, acc: &mut [Vec<Complex<T>>], last: bool| {
-            for p in (a..b_passes.count).step_by(b_passes.acc) {
+        let passes = self.passes(fields as usize, (n_acc, cell));
+        let in_shares = |kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<T>)| {
+            let short =
+                (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len));
+            let fwd = short.as_deref().unwrap_or(plan.forward_y());
+            for a in 0..passes.acc {
+                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * passes.acc_len)).collect();
+                run(a, &mut acc);
+                if a + 1 == passes.acc {
+                    // (The first stages are done with.)
+                    self.ones.clear();
+                }
+                kept.resize(kept_len, C64::new(0.0, 0.0));
+                self.gather(kept, (&acc, n_b), &layout, (a, &passes), fwd);
+                pool.give_all(acc);
+            }
+        };
+        // The passes of share a.
+        let of_share = |a: usize| (a..passes.count).step_by(passes.acc);
+        // The B terms of the fields of k_x/s and k_y/s, each factor's products in each
+        // pass (never the last: those of s follow).
+        let xy = |a: usize, acc: &mut [Vec<Complex<T>>]| {
+            for p in of_share(a) {
                 for f in [Factor::X, Factor::Y] {
                     let fe = (f, (lo, hi));
-                    self.each_cell(
-                        b,
-                        (fe, fe),
-                        ((p, &b_passes), acc),
-                        last && f == Factor::Y,
-                        |c, q, _| b_terms(f, (1.0, 1.0), c, q),
-                    );
+                    self.each_cell(b, (fe, fe), ((p, &passes), acc), false, |c, q, _| {
+                        b_terms(f, (1.0, 1.0), c, q)
+                    });
                 }
             }
         };
         if !finite {
             // Deep water: the V fields (s) their own, the last products.
-            in_shares(&b_passes, &mut kept, &|a, acc| {
-                xy(a, acc, false);
-                for p in (a..b_passes.count).step_by(b_passes.acc) {
+            in_shares(&mut kept, &|a, acc| {
+                xy(a, acc);
+                for p in of_share(a) {
                     let fe = (Factor::V, (lo, hi));
-                    self.each_cell(b, (fe, fe), ((p, &b_passes), acc), true, |c, q, _| {
+                    self.each_cell(b, (fe, fe), ((p, &passes), acc), true, |c, q, _| {
                         b_terms(Factor::V, (-1.0, 1.0), c, q)
                     });
                 }
@@ -449,11 +447,10 @@ impl TransformBound {
                     power_term(c[g], q1, &one[at(1)..], t, m, (-2.0, im), &mut sum);
                 }
             };
-            let sa_passes = self.passes(2 * (hi - lo + 2) as usize, (n_acc, cell));
-            in_shares(&b_passes, &mut kept, &|a, acc| {
-                xy(a, &mut acc[..n_b], false);
-                for p in (a..sa_passes.count).step_by(sa_passes.acc) {
-                    self.each_cell(b, (q_e, one_e), ((p, &sa_passes), acc), true, sa_terms);
+            in_shares(&mut kept, &|a, acc| {
+                xy(a, &mut acc[..n_b]);
+                for p in of_share(a) {
+                    self.each_cell(b, (q_e, one_e), ((p, &passes), acc), true, sa_terms);
                 }
             });
         }

@@ -463,7 +463,8 @@ fn at_finite_depth_the_fit_takes_the_lighter_difference_basis_within_autos_bound
         let region = TransformBound::region(&setup, so.components(), 1.0);
         let kf = TransformBound::fit_for(&setup, &so);
         let light = |m| {
-            let bases = Bases::for_depth(setup_depth(dispersion)).with_diff_powers(m);
+            let bases = Bases::for_depth(crate::field::fft::second_order::depth_of(dispersion))
+                .with_diff_powers(m);
             KernelFit::with_bases(model.as_ref(), dispersion, region, setup.dk(), bases)
         };
         eprintln!(
@@ -478,14 +479,6 @@ fn at_finite_depth_the_fit_takes_the_lighter_difference_basis_within_autos_bound
             assert!(lighter > AUTO_MAX_ESTIMATE, "{depth}: {lighter}");
             assert!(kf.rel_rms_error < lighter, "{depth}");
         }
-    }
-}
-
-/// The depth of a dispersion (None: deep water).
-fn setup_depth(dispersion: crate::spectrum::Dispersion) -> Option<f64> {
-    match dispersion {
-        crate::spectrum::Dispersion::Deep => None,
-        crate::spectrum::Dispersion::Finite { depth_m } => Some(depth_m),
     }
 }
 
