@@ -51,6 +51,16 @@ impl GridSpec {
         j as f64 * self.dy_m()
     }
 
+    /// The wavevector of FFT indices (n, m), rad/m: 2π·(n/L_x, m/L_y).
+    #[inline]
+    pub fn wavevector(&self, n: i64, m: i64) -> (f64, f64) {
+        let tau = 2.0 * std::f64::consts::PI;
+        (
+            tau * n as f64 / self.extent_x_m,
+            tau * m as f64 / self.extent_y_m,
+        )
+    }
+
     /// Number of samples.
     pub fn len(&self) -> usize {
         self.nx * self.ny

@@ -73,11 +73,7 @@ impl SpectrumSetup<'_> {
     /// Wavevector of indices `(n, m)`, rad/m.
     #[inline]
     pub fn wavevector(&self, n: i64, m: i64) -> (f64, f64) {
-        let tau = 2.0 * std::f64::consts::PI;
-        (
-            tau * n as f64 / self.spec.extent_x_m,
-            tau * m as f64 / self.spec.extent_y_m,
-        )
+        self.spec.wavevector(n, m)
     }
 
     pub fn dk(&self) -> (f64, f64) {

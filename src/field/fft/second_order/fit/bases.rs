@@ -118,6 +118,13 @@ impl Bases {
         }
     }
 
+    /// The difference powers reach no further than the lighter basis's (deep water, and
+    /// finite depth where its estimate serves): where the amplification of the powers'
+    /// expansion at small |q| is smallest.
+    pub fn light_difference(&self) -> bool {
+        self.diff_powers <= FINITE_LIGHT_DIFF_POWERS
+    }
+
     /// The number of functions of term 0 (sum) or 1 (difference).
     pub fn len(&self, term: usize) -> usize {
         if term == 0 {

@@ -107,8 +107,11 @@ impl Exact {
     /// spectrum's weight: Σ over the ordered pairs (i, j) of k_i − k_j = q of
     /// b_i conj(b_j) K⁻_ij, and at q = 0 the set-down Σ |b_i|² K⁻_ii (held). Each
     /// output's sum in the waves' order (the same bits at any thread count).
-    pub(super) fn values(&self, comps: &[Wave], b: &[C64]) -> Vec<(i64, i64, C64)> {
-        let input = |c: &Wave| [c.kx, c.ky, c.s * c.s, c.s, c.q];
+    pub(super) fn values(&self, comps: &[Wave], b: &[C64], spec: GridSpec) -> Vec<(i64, i64, C64)> {
+        let input = |c: &Wave| {
+            let (kx, ky) = c.k(spec);
+            [kx, ky, c.s * c.s, c.s, c.q]
+        };
         self.outputs
             .par_iter()
             .map(|&(n, m, t)| {

@@ -21,7 +21,7 @@ use exact::Exact;
 use grid::{Plan, Pool, Reach};
 use outputs::Outputs;
 use products::{Acc, Layout, Real, expansion, part, power_term};
-use stages::{FIELDS, Factor};
+use stages::{AccRows, FIELDS, Factor};
 
 use super::fit::{Box2, KernelFit, MAX_NB, Region};
 use super::{
@@ -31,17 +31,23 @@ use super::{
 use crate::fastmath;
 use crate::grid::{GridSpec, signed_index};
 
-/// What a frame reads of a component (56 bytes instead of a [`Component`]'s 88: the
-/// components are held for the sequence).
+/// What a frame reads of a component (40 bytes instead of a [`Component`]'s 88: the
+/// components are held for the sequence; the wavevector is its indices').
 struct Wave {
     n: i32,
     m: i32,
-    kx: f64,
-    ky: f64,
     s: f64,
     q: f64,
     rho: f64,
     phi: f64,
+}
+
+impl Wave {
+    /// The wavevector (k_x, k_y) on the grid of `spec` (the component's, to the bit).
+    #[inline]
+    fn k(&self, spec: GridSpec) -> (f64, f64) {
+        spec.wavevector(i64::from(self.n), i64::from(self.m))
+    }
 }
 
 impl From<&Component> for Wave {
@@ -49,8 +55,6 @@ impl From<&Component> for Wave {
         Self {
             n: i32::try_from(c.n).expect("a grid index"),
             m: i32::try_from(c.m).expect("a grid index"),
-            kx: c.kx,
-            ky: c.ky,
             s: c.s,
             q: c.q,
             rho: c.rho,
@@ -266,14 +270,16 @@ impl TransformBound {
             .comps
             .iter()
             .map(|c| {
-                let wt = setup.omega_t(c.kx, c.ky);
+                let (kx, ky) = c.k(self.spec);
+                let wt = setup.omega_t(kx, ky);
                 let (s, co) = fastmath::sin_cos(c.phi - wt);
                 C64::new(2.0 * c.rho * co, 2.0 * c.rho * s)
             })
             .collect();
-        match self.depth {
-            Some(_) => self.add_as::<f64>(&b, half),
-            None => self.add_as::<f32>(&b, half),
+        if self.b_single() {
+            self.add_as::<f32, f64>(&b, half);
+        } else {
+            self.add_as::<f64, f64>(&b, half);
         }
         // Nothing held between frames (the linear field's own arrays come next).
         self.pool.clear();
@@ -281,12 +287,31 @@ impl TransformBound {
         self.ones.clear();
     }
 
-    /// [`Self::add_to`] with the amplitudes `b` at the time, accumulators of precision `T`.
-    fn add_as<T: Real>(&self, b: &[C64], half: &mut HalfSpectrum) {
+    /// The B terms' accumulators are single precision ([`products::Real`]): in deep
+    /// water, and at finite depth where the lighter difference basis serves.
+    fn b_single(&self) -> bool {
+        self.fit.bases.light_difference()
+    }
+
+    /// The accumulators of a frame: the B terms' (the separable part and the groups of
+    /// the bases' [`Layout`]), the S·A terms' (the groups, at finite depth), and the
+    /// bytes of them all a padded cell (double precision 16 a complex value, single 8).
+    fn accumulators(&self) -> (usize, usize, usize) {
+        let bases = &self.fit.bases;
+        let groups = Layout::new(bases.len(0), bases.len(1)).slots.len();
+        let n_b = groups + 1;
+        let n_sa = if self.depth.is_some() { groups } else { 0 };
+        let b_cell = if self.b_single() { 8 } else { 16 };
+        (n_b, n_sa, n_b * b_cell + n_sa * 16)
+    }
+
+    /// [`Self::add_to`] with the amplitudes `b` at the time, the B terms' accumulators of
+    /// precision `B`, the S·A terms' of `S`.
+    fn add_as<B: Real, S: Real>(&self, b: &[C64], half: &mut HalfSpectrum) {
         let (nx, ny) = (self.spec.nx, self.spec.ny);
         let (px, py) = (self.plan.px, self.plan.py);
         let finite = self.depth.is_some();
-        let (plan, pool) = T::forward(self);
+        let ((plan_b, pool_b), (plan_s, pool_s)) = (B::forward(self), S::forward(self));
         let ox = self.reach.0.o;
         // The fields of exponent e are at index e − lo.
         let bases = &self.fit.bases;
@@ -309,33 +334,32 @@ impl TransformBound {
             })
             .collect();
         let layout = Layout::new(bases.len(0), bases.len(1));
-        let groups = layout.slots.len();
         // Products: re = sum term Re(A_f A_g), im = difference term Re(A_f conj A_g).
         // Accumulator 0: the separable part B + R_i + R_j (sum re, difference im); 1 + g:
         // the weighted parts of the B terms (multiplied by 2T c) in `layout`'s slot g, and
         // at finite depth those of the S·A terms (by c, in `sa`, slot g at g).
         // `scale` multiplies every product (the V fields read from those of W0: s_p²).
         let b_terms =
-            |f: Factor, (sign, scale): (f64, f64), c: &mut [&mut [Complex<T>]], p: &[&[C64]]| {
+            |f: Factor, (sign, scale): (f64, f64), c: &mut [&mut [Complex<B>]], p: &[&[C64]]| {
                 if f == Factor::V {
                     // The separable part's R_i + R_j: with x = |s|/s_p, R = s² is
                     // s_p·(s·x) and 1 is (s/x)/s_p, the V fields of exponents 1 and −1.
                     let rows = c[0].iter_mut().zip(p[at(1)]).zip(p[at(-1)]);
                     for ((c, r), o) in rows {
-                        c.re += T::of(2.0 * scale * (r * o).re);
-                        c.im += T::of(2.0 * scale * (r * o.conj()).re);
+                        c.re += B::of(2.0 * scale * (r * o).re);
+                        c.im += B::of(2.0 * scale * (r * o.conj()).re);
                     }
                 }
                 // The separable part's B.
                 for (c, p0) in c[0].iter_mut().zip(p[at(0)]) {
-                    c.re += T::of(sign * scale * (p0 * p0).re);
-                    c.im += T::of(scale * (p0 * p0.conj()).re);
+                    c.re += B::of(sign * scale * (p0 * p0).re);
+                    c.im += B::of(scale * (p0 * p0.conj()).re);
                 }
                 for (f, &(g, im)) in bases.sum.iter().zip(&layout.sum) {
                     for &(w, u, v) in &f.monomials {
                         let k = sign * scale * w;
                         for ((c, a), b) in c[1 + g].iter_mut().zip(p[at(u)]).zip(p[at(v)]) {
-                            *part(c, im) += T::of(k * (a * b).re);
+                            *part(c, im) += B::of(k * (a * b).re);
                         }
                     }
                 }
@@ -354,12 +378,10 @@ impl TransformBound {
         let mut kept = Vec::new();
         // The accumulators a share of the rows of y at a time ([`Passes`]): the B terms'
         // (`groups` + 1: the separable part and the weighted parts, multiplied by 2T c),
-        // then at finite depth the S·A terms' (`groups`, by c). `run(a, acc)` adds the
+        // and at finite depth the S·A terms' (`groups`, by c). `run(a, acc)` adds the
         // products of the first stages' passes of share a, whose transforms along y (at
         // the share's length) are then gathered at the kept outputs.
-        let n_b = groups + 1;
-        let n_acc = n_b + if finite { groups } else { 0 };
-        let cell = size_of::<Complex<T>>();
+        let (n_b, n_sa, acc_bytes) = self.accumulators();
         // The passes over y: in deep water those of a B factor's fields; at finite depth
         // those of the S·A terms' two factors, for the B terms' too (the first stages'
         // arrays, reused from pass to pass, then all of one length).
@@ -368,32 +390,39 @@ impl TransformBound {
         } else {
             hi - lo + 1
         };
-        let passes = self.passes(fields as usize, (n_acc, cell));
-        let in_shares = |kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<T>)| {
-            let short =
-                (passes.acc > 1).then(|| FftPlanner::<T>::new().plan_fft_forward(passes.acc_len));
-            let fwd = short.as_deref().unwrap_or(plan.forward_y());
+        let passes = self.passes(fields as usize, acc_bytes);
+        let in_shares = |kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<B, S>)| {
+            let len = passes.acc_len;
+            let shares = passes.acc > 1;
+            let short_b = shares.then(|| FftPlanner::<B>::new().plan_fft_forward(len));
+            let short_s = shares.then(|| FftPlanner::<S>::new().plan_fft_forward(len));
+            let fwd_b = short_b.as_deref().unwrap_or(plan_b.forward_y());
+            let fwd_s = short_s.as_deref().unwrap_or(plan_s.forward_y());
             for a in 0..passes.acc {
-                let mut acc: Acc<T> = (0..n_acc).map(|_| pool.take(px * passes.acc_len)).collect();
+                let mut acc = Acc {
+                    b: (0..n_b).map(|_| pool_b.take(px * len)).collect(),
+                    sa: (0..n_sa).map(|_| pool_s.take(px * len)).collect(),
+                };
                 run(a, &mut acc);
                 if a + 1 == passes.acc {
                     // (The first stages are done with.)
                     self.ones.clear();
                 }
                 kept.resize(kept_len, C64::new(0.0, 0.0));
-                self.gather(kept, (&acc, n_b), &layout, (a, &passes), fwd);
-                pool.give_all(acc);
+                self.gather(kept, &acc, &layout, (a, &passes), (fwd_b, fwd_s));
+                pool_b.give_all(acc.b);
+                pool_s.give_all(acc.sa);
             }
         };
         // The passes of share a.
         let of_share = |a: usize| (a..passes.count).step_by(passes.acc);
         // The B terms of the fields of k_x/s and k_y/s, each factor's products in each
         // pass (never the last: those of s follow).
-        let xy = |a: usize, acc: &mut [Vec<Complex<T>>]| {
+        let xy = |a: usize, acc: &mut Acc<B, S>| {
             for p in of_share(a) {
                 for f in [Factor::X, Factor::Y] {
                     let fe = (f, (lo, hi));
-                    self.each_cell(b, (fe, fe), ((p, &passes), acc), false, |c, q, _| {
+                    self.each_cell(b, (fe, fe), ((p, &passes), acc), false, |(c, _), q, _| {
                         b_terms(f, (1.0, 1.0), c, q)
                     });
                 }
@@ -405,7 +434,7 @@ impl TransformBound {
                 xy(a, acc);
                 for p in of_share(a) {
                     let fe = (Factor::V, (lo, hi));
-                    self.each_cell(b, (fe, fe), ((p, &passes), acc), true, |c, q, _| {
+                    self.each_cell(b, (fe, fe), ((p, &passes), acc), true, |(c, _), q, _| {
                         b_terms(Factor::V, (-1.0, 1.0), c, q)
                     });
                 }
@@ -419,8 +448,7 @@ impl TransformBound {
             // at the exponent above, times s_p: their products are taken in the same pass.
             let (q_e, one_e) = ((Factor::W1, (lo - 1, hi)), (Factor::W0, (lo, hi + 1)));
             let s_p2 = self.fit.s_ref * self.fit.s_ref;
-            let sa_terms = |c: &mut [&mut [Complex<T>]], q: &[&[C64]], one: &[&[C64]]| {
-                let (cb, c) = c.split_at_mut(n_b);
+            let sa_terms = |(cb, c): AccRows<B, S>, q: &[&[C64]], one: &[&[C64]]| {
                 b_terms(Factor::V, (-1.0, s_p2), cb, &one[1..]);
                 // Q at exponent e is field e − lo + 1, 1 at e field e − lo.
                 let q_at = |e: i32| q[(e - lo + 1) as usize];
@@ -435,7 +463,7 @@ impl TransformBound {
                             c[g].iter_mut().zip(plain.zip(shifted))
                         {
                             let p = (a * b).re + (d * e).re + (f * g).re + (h * i).re;
-                            *part(cell, im) += T::of(w * p);
+                            *part(cell, im) += S::of(w * p);
                         }
                     }
                 }
@@ -448,7 +476,7 @@ impl TransformBound {
                 }
             };
             in_shares(&mut kept, &|a, acc| {
-                xy(a, &mut acc[..n_b]);
+                xy(a, acc);
                 for p in of_share(a) {
                     self.each_cell(b, (q_e, one_e), ((p, &passes), acc), true, sa_terms);
                 }
@@ -457,7 +485,7 @@ impl TransformBound {
         // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
         // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).
         let oy = ox_oy.1;
-        let exact = self.exact.values(&self.comps, b);
+        let exact = self.exact.values(&self.comps, b, self.spec);
         let norm = 0.25 / (px * py) as f64;
         half.data
             .par_chunks_mut(ny)

@@ -11,7 +11,7 @@ use rustfft::num_complex::Complex;
 use super::super::C64;
 use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
-use super::products::{Layout, Part, Real, wide};
+use super::products::{Acc, Layout, Part, Real, wide};
 use super::stages::Passes;
 use crate::grid::GridSpec;
 
@@ -34,9 +34,7 @@ pub(super) fn coefficients_at(
 /// |q|, q and T(|q|) of output (n, m).
 #[inline]
 pub(super) fn output_t(spec: GridSpec, depth: Option<f64>, n: i64, m: i64) -> (f64, f64, f64, f64) {
-    let tau = std::f64::consts::TAU;
-    let qx = tau * n as f64 / spec.extent_x_m;
-    let qy = tau * m as f64 / spec.extent_y_m;
+    let (qx, qy) = spec.wavevector(n, m);
     // (Not `hypot`: no overflow to guard against here, at a fraction of its cost.)
     let qn = (qx * qx + qy * qy).sqrt();
     (qn, qx, qy, resonance_t(qn, depth))
@@ -99,28 +97,29 @@ impl TransformBound {
         self.outputs = Some(Outputs::new(&self.fit, self.spec, self.depth, o));
     }
 
-    /// Transforms the accumulators `accs` of share p of `passes` along y and adds them at
-    /// each kept output (lines 0 ..= o_x, columns −o_y ..= o_y) to `kept`. `accs` are the
+    /// Transforms the accumulators `acc` of share p of `passes` along y and adds them at
+    /// each kept output (lines 0 ..= o_x, columns −o_y ..= o_y) to `kept`. They are the
     /// share's py/P_a rows of y of px, transformed along x already
-    /// ([`super::stages::Passes`]); `fwd` transforms py/P_a values. The first `n_b` are
-    /// the B terms' (the separable part, then the slots of `layout` times 2T and their
-    /// output coefficients), the rest the S·A terms' (the slots times their
-    /// coefficients). A few output lines n at a time, the columns n and −n of every
+    /// ([`super::stages::Passes`]); `fwd_b` and `fwd_s` transform py/P_a values in their
+    /// precisions. The B terms' are the separable part, then the slots of `layout` times
+    /// 2T and their output coefficients; the S·A terms' the slots times their
+    /// coefficients. A few output lines n at a time, the columns n and −n of every
     /// accumulator are copied out and transformed there (no whole transposed array is
     /// made, and only the kept lines' columns are transformed). A share's transform at
     /// ky index m is the whole transform's part of its rows of y: times e^{−2πi m p/py},
     /// the shares add up to the whole.
-    pub(super) fn gather<T: Real>(
+    pub(super) fn gather<B: Real, S: Real>(
         &self,
         kept: &mut [C64],
-        (accs, n_b): (&[Vec<Complex<T>>], usize),
+        acc: &Acc<B, S>,
         layout: &Layout,
         (p, passes): (usize, &Passes),
-        fwd: &dyn Fft<T>,
+        (fwd_b, fwd_s): (&dyn Fft<B>, &dyn Fft<S>),
     ) {
         let (px, py) = (self.plan.px, self.plan.py);
         let len = passes.acc_len;
-        debug_assert_eq!(fwd.len(), len);
+        let (n_b, n_acc) = (acc.b.len(), acc.b.len() + acc.sa.len());
+        debug_assert_eq!((fwd_b.len(), fwd_s.len()), (len, len));
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
@@ -134,12 +133,11 @@ impl TransformBound {
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         // Output lines a task: their columns n (and −n) are neighbours in each row.
         const LINES: usize = 4;
-        let zero = Complex::new(T::of(0.0), T::of(0.0));
         kept.par_chunks_mut((columns * LINES).max(1))
             .enumerate()
             .for_each_init(
-                || (Vec::new(), Vec::new()),
-                |(cols, scratch), (c, lines)| {
+                || ((Vec::new(), Vec::new()), (Vec::new(), Vec::new())),
+                |(cols_b, cols_s), (c, lines)| {
                     let n0 = c * LINES;
                     let nl = lines.len() / columns.max(1);
                     // Column l < nl of accumulator f is line n0 + l's (x = n), column
@@ -150,19 +148,9 @@ impl TransformBound {
                             (if l < nl { n } else { -n }).rem_euclid(px as i64) as usize
                         })
                         .collect();
-                    cols.resize(accs.len() * 2 * nl * len, zero);
-                    scratch.resize(fwd.get_inplace_scratch_len(), zero);
-                    for (f, acc) in accs.iter().enumerate() {
-                        let block = &mut cols[f * 2 * nl * len..(f + 1) * 2 * nl * len];
-                        for (i, row) in acc.chunks_exact(px).enumerate() {
-                            for (l, &x) in xs.iter().enumerate() {
-                                block[l * len + i] = row[x];
-                            }
-                        }
-                        for col in block.chunks_exact_mut(len) {
-                            fwd.process_with_scratch(col, scratch);
-                        }
-                    }
+                    columns_of(&acc.b, (&xs, px), fwd_b, cols_b);
+                    columns_of(&acc.sa, (&xs, px), fwd_s, cols_s);
+                    let (cols_b, cols_s) = (&cols_b.0, &cols_s.0);
                     for (l, line) in lines.chunks_exact_mut(columns).enumerate() {
                         let n = (n0 + l) as i64;
                         // Without the table, the line's coefficients once for ±m.
@@ -181,8 +169,14 @@ impl TransformBound {
                             // The sum (re) and difference (im) parts of accumulator f's
                             // packed transform.
                             let unpack = |f: usize| {
-                                let at = f * 2 * nl * len;
-                                let (a, b) = (wide(cols[at + here]), wide(cols[at + there]).conj());
+                                let (a, b) = if f < n_b {
+                                    let at = f * 2 * nl * len;
+                                    (wide(cols_b[at + here]), wide(cols_b[at + there]))
+                                } else {
+                                    let at = (f - n_b) * 2 * nl * len;
+                                    (wide(cols_s[at + here]), wide(cols_s[at + there]))
+                                };
+                                let b = b.conj();
                                 (0.5 * (a + b), (a - b) * C64::new(0.0, -0.5))
                             };
                             let (cp, cm, t) = match outputs {
@@ -210,7 +204,7 @@ impl TransformBound {
                                 *into +=
                                     weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
                             }
-                            for (f, slot) in (n_b..accs.len()).zip(&layout.slots) {
+                            for (f, slot) in (n_b..n_acc).zip(&layout.slots) {
                                 let (s, d) = unpack(f);
                                 *into += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
                             }
@@ -221,5 +215,30 @@ impl TransformBound {
                     }
                 },
             );
+    }
+}
+
+/// The columns `xs` of every accumulator of `accs` (rows of px), each transformed by
+/// `fwd`, into `cols.0`: accumulator f's column l at (f·xs.len() + l)·len (`cols.1` the
+/// transform's scratch).
+fn columns_of<T: Real>(
+    accs: &[Vec<Complex<T>>],
+    (xs, px): (&[usize], usize),
+    fwd: &dyn Fft<T>,
+    (cols, scratch): &mut (Vec<Complex<T>>, Vec<Complex<T>>),
+) {
+    let len = fwd.len();
+    let zero = Complex::new(T::of(0.0), T::of(0.0));
+    cols.resize(accs.len() * xs.len() * len, zero);
+    scratch.resize(fwd.get_inplace_scratch_len(), zero);
+    for (block, acc) in cols.chunks_exact_mut(xs.len() * len).zip(accs) {
+        for (i, row) in acc.chunks_exact(px).enumerate() {
+            for (l, &x) in xs.iter().enumerate() {
+                block[l * len + i] = row[x];
+            }
+        }
+        for col in block.chunks_exact_mut(len) {
+            fwd.process_with_scratch(col, scratch);
+        }
     }
 }

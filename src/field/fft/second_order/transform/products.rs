@@ -19,15 +19,21 @@ pub(super) fn expansion(m: usize) -> impl Iterator<Item = (usize, f64)> {
     })
 }
 
-/// The accumulators of every padded cell (py rows of px), one array an accumulator (the
-/// separable part, then each group), each then transformed in place.
-pub(super) type Acc<T> = Vec<Vec<Complex<T>>>;
+/// The accumulators of a share of the padded cells (rows of px), one array an
+/// accumulator, each then transformed in place: the B terms' (the separable part, then
+/// each group; precision `B`) and, at finite depth, the S·A terms' (each group; `S`).
+pub(super) struct Acc<B, S> {
+    pub(super) b: Vec<Vec<Complex<B>>>,
+    pub(super) sa: Vec<Vec<Complex<S>>>,
+}
 
-/// The precision of the accumulators and their forward transforms: double at finite
-/// depth, where the S·A terms cancel to within single precision's rounding (and the
-/// difference powers' expansion of δ^{2m} amplifies it at small |q|), single in deep
-/// water, where the S·A terms are absent (the products are formed in double precision
-/// either way; tested against the pair sum of the same kernels).
+/// The precision of the accumulators and their forward transforms
+/// ([`TransformBound::precision`]): the S·A terms' double, since they cancel to within
+/// single precision's rounding (and the difference powers' expansion of δ^{2m} amplifies
+/// it at small |q|); the B terms' single, except where the fit needs the fuller
+/// difference basis (shallow water, where that amplification is largest). The products
+/// are formed in double precision either way; tested against the pair sum of the same
+/// kernels.
 pub(super) trait Real: FftNum + std::ops::AddAssign {
     fn of(x: f64) -> Self;
     fn wide(self) -> f64;

@@ -13,8 +13,9 @@ use rustfft::{Fft, FftPlanner};
 
 use super::super::C64;
 use super::super::fit::POWERS;
-use super::products::Real;
+use super::products::{Acc, Real};
 use super::{TransformBound, Wave};
+use crate::grid::GridSpec;
 
 /// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
 /// terms' fields of Q and 1 reach one below and one above them).
@@ -22,9 +23,10 @@ pub(super) const FIELDS: usize = POWERS + 1;
 
 /// The bytes of the accumulators a pass over y holds an output cell, at most: above it,
 /// they are built a share of the rows of y at a time ([`Passes`]), each share's
-/// transforms gathered at the outputs. The 19 m storm over 2048 m holds about 26 at 1024²
-/// in one pass; over 4096 m its box has 4 times the cells.
-pub(super) const ACC_BYTES_PER_CELL: usize = 32;
+/// transforms gathered at the outputs. The 19 m storm over 2048 m has about 31 at 1024²
+/// (two shares; in one the frame took as long and 1.35 times the memory), over 4096 m
+/// 125 (eight shares, which keep it within 3 times the linear field's peak).
+pub(super) const ACC_BYTES_PER_CELL: usize = 20;
 
 /// The bytes of first-stage fields a pass over y holds an output cell (the linear field
 /// holds about 17 at its peak; see [`TransformBound::passes`]).
@@ -58,6 +60,12 @@ impl<'a> Pass<'a> {
     }
 }
 
+/// A row of y of every accumulator of a share: the B terms', the S·A terms'.
+pub(super) type AccRows<'a, 'r, B, S> = (
+    &'a mut [&'r mut [Complex<B>]],
+    &'a mut [&'r mut [Complex<S>]],
+);
+
 /// A factor's first-stage fields: its exponents lo ..= hi.
 pub(super) type Fields = (Factor, (i32, i32));
 
@@ -75,10 +83,10 @@ pub(super) enum Factor {
 }
 
 impl Factor {
-    fn of(self, c: &Wave) -> f64 {
+    fn of(self, c: &Wave, spec: GridSpec) -> f64 {
         match self {
-            Factor::X => c.kx / c.s,
-            Factor::Y => c.ky / c.s,
+            Factor::X => c.k(spec).0 / c.s,
+            Factor::Y => c.k(spec).1 / c.s,
             Factor::V => c.s,
             Factor::W1 => c.q,
             Factor::W0 => 1.0,
@@ -125,7 +133,7 @@ impl TransformBound {
                     // f(k_i)·x^e·b_i of e = lo, lo + 1, …: one multiplication by x an
                     // exponent.
                     let x = c.s.abs() / self.fit.s_ref;
-                    let mut w = bi * (f.of(c) * x.powi(lo));
+                    let mut w = bi * (f.of(c, self.spec) * x.powi(lo));
                     let at = col % len;
                     for row in rows.iter_mut() {
                         row[at] += w;
@@ -159,15 +167,15 @@ impl TransformBound {
     /// whole fields' transforms (to rounding; the same bits in one pass). With `last`,
     /// the terms' last products: each row of the accumulators is then transformed along
     /// x (the first stage of their forward transforms, while the row is at hand).
-    pub(super) fn each_cell<T: Real>(
+    pub(super) fn each_cell<B: Real, S: Real>(
         &self,
         b: &[C64],
         (fs, gs): (Fields, Fields),
-        (pass, acc): ((usize, &Passes), &mut [Vec<Complex<T>>]),
+        (pass, acc): ((usize, &Passes), &mut Acc<B, S>),
         last: bool,
-        add: impl Fn(&mut [&mut [Complex<T>]], &[&[C64]], &[&[C64]]) + Sync,
+        add: impl Fn(AccRows<B, S>, &[&[C64]], &[&[C64]]) + Sync,
     ) {
-        let (plan, _) = T::forward(self);
+        let (plan_b, plan_s) = (B::forward(self).0, S::forward(self).0);
         const ROWS: usize = 4;
         let (p, passes) = pass;
         let px = self.plan.px;
@@ -180,14 +188,27 @@ impl TransformBound {
         // accumulator: row i = j·r + t of the accumulators' pass.
         let (r, t) = (passes.count / passes.acc, p / passes.acc);
         type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
-        let mut by_j: Vec<Rows<T>> = (0..len).map(|_| Vec::with_capacity(acc.len())).collect();
-        for a in acc.iter_mut() {
+        let mut by_j: Vec<(Rows<B>, Rows<S>)> = (0..len)
+            .map(|_| {
+                (
+                    Vec::with_capacity(acc.b.len()),
+                    Vec::with_capacity(acc.sa.len()),
+                )
+            })
+            .collect();
+        for a in acc.b.iter_mut() {
             let rows = a.chunks_exact_mut(px).skip(t).step_by(r);
             for (j, row) in rows.enumerate() {
-                by_j[j].push(row);
+                by_j[j].0.push(row);
             }
         }
-        let mut tasks: Vec<Vec<Rows<T>>> = (0..len.div_ceil(ROWS))
+        for a in acc.sa.iter_mut() {
+            let rows = a.chunks_exact_mut(px).skip(t).step_by(r);
+            for (j, row) in rows.enumerate() {
+                by_j[j].1.push(row);
+            }
+        }
+        let mut tasks: Vec<Vec<(Rows<B>, Rows<S>)>> = (0..len.div_ceil(ROWS))
             .map(|_| Vec::with_capacity(ROWS))
             .collect();
         for (j, rows) in by_j.into_iter().enumerate() {
@@ -228,8 +249,8 @@ impl TransformBound {
         let g_one = if same { Vec::new() } else { fields(gs) };
         let g_src = if same { &f_one } else { &g_one };
         tasks.into_par_iter().enumerate().for_each_init(
-            || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-            |(fr, gr, scratch, scratch_t), (c, mut out)| {
+            || (Vec::new(), Vec::new(), Vec::new(), (Vec::new(), Vec::new())),
+            |(fr, gr, scratch, (scratch_b, scratch_s)), (c, mut out)| {
                 let at_rows = (c * ROWS, out.len());
                 rows_of(&f_one, at_rows, fr, scratch);
                 if !same {
@@ -237,16 +258,19 @@ impl TransformBound {
                 }
                 let gr = if same { &*fr } else { &*gr };
                 let (nf, ng, nj) = (f_one.len(), g_src.len(), out.len());
-                for (jj, rows) in out.iter_mut().enumerate() {
+                for (jj, (rb, rs)) in out.iter_mut().enumerate() {
                     let at = |l: usize| (l * nj + jj) * px..(l * nj + jj + 1) * px;
                     let fv: [&[C64]; FIELDS] =
                         std::array::from_fn(|l| if l < nf { &fr[at(l)] } else { &[] });
                     let gv: [&[C64]; FIELDS] =
                         std::array::from_fn(|l| if l < ng { &gr[at(l)] } else { &[] });
-                    add(rows, &fv, &gv);
+                    add((rb, rs), &fv, &gv);
                     if last {
-                        for row in rows.iter_mut() {
-                            plan.forward_x(row, scratch_t);
+                        for row in rb.iter_mut() {
+                            plan_b.forward_x(row, scratch_b);
+                        }
+                        for row in rs.iter_mut() {
+                            plan_s.forward_x(row, scratch_s);
                         }
                     }
                 }
@@ -255,14 +279,14 @@ impl TransformBound {
         self.ones.give_all(f_one.into_iter().chain(g_one));
     }
 
-    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields and `accs`
-    /// accumulators of `cell` bytes a padded cell: the accumulators' P_a, the least
+    /// The passes over y of [`Self::each_cell`] for `ne` first-stage fields and
+    /// accumulators of `acc_bytes` a padded cell (all of them): the accumulators' P_a, the least
     /// divisor of py that holds at most `acc_budget` ([`ACC_BYTES_PER_CELL`]) bytes an
     /// output cell of them at once, and the first stages' P, the least multiple of P_a
     /// dividing py that holds at most [`PASS_BYTES_PER_CELL`] (each pass folds the
     /// components onto its share of the columns and transforms that: the passes together
     /// cost about one whole transform).
-    pub(super) fn passes(&self, ne: usize, (accs, cell): (usize, usize)) -> Passes {
+    pub(super) fn passes(&self, ne: usize, acc_bytes: usize) -> Passes {
         let py = self.plan.py;
         let cells = self.spec.nx * self.spec.ny;
         // The least divisor of py, a multiple of `of`, at or above `least`.
@@ -271,7 +295,7 @@ impl TransformBound {
                 .find(|d| py % d == 0 && d % of == 0)
                 .unwrap_or(py)
         };
-        let bytes = accs * self.plan.px * py * cell;
+        let bytes = acc_bytes * self.plan.px * py;
         let acc = divisor(bytes.div_ceil((self.acc_budget * cells).max(1)), 1);
         let held = ne * (self.rows.len() - 1) * self.row_stride(py) * size_of::<C64>();
         let cap = PASS_BYTES_PER_CELL * cells;

@@ -86,17 +86,12 @@ fn the_transforms_equal_the_pair_sum_of_the_fitted_kernels() {
                 let scale = want.iter().fold(0.0f64, |m, v| m.max(f64::from(v.abs())));
                 assert!(scale > 0.0);
                 // The accumulators in several shares of the rows of y (this small grid's
-                // budget), and in one (a budget that holds them all): the B terms' shares
-                // (their 1 + groups accumulators, single precision in deep water).
+                // budget), and in one (a budget that holds them all).
                 let (lo, hi) = kf.bases.exponents();
-                let groups = products::Layout::new(kf.bases.len(0), kf.bases.len(1))
-                    .slots
-                    .len();
-                let cell = if depth.is_some() { 16 } else { 8 };
-                // (At finite depth the S·A terms' accumulators are held beside them.)
-                let accs = groups + 1 + if depth.is_some() { groups } else { 0 };
-                let shares =
-                    |tb: &TransformBound| tb.passes((hi - lo + 1) as usize, (accs, cell)).acc;
+                let shares = |tb: &TransformBound| {
+                    let bytes = tb.accumulators().2;
+                    tb.passes((hi - lo + 1) as usize, bytes).acc
+                };
                 for (budget, split) in [(stages::ACC_BYTES_PER_CELL, true), (1 << 30, false)] {
                     tb.acc_budget = budget;
                     let n = shares(&tb);
