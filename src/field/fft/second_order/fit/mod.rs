@@ -159,12 +159,16 @@ impl Box2 {
 }
 
 /// Where the fit's pairs come from and land: the box of the paired waves, the box of the
-/// outputs kept, and the least E|h̃0|² of a paired cell (0: every wave of the box).
+/// outputs kept, the least E|h̃0|² of a paired cell (0: every wave of the box) and the
+/// largest |k| of a paired wave (infinite: every wave of the box; the convergence limit
+/// is a circle, and the waves of the box beyond it, never paired, would draw the fit and
+/// its estimate to short nearly opposed pairs that do not occur).
 #[derive(Debug, Clone, Copy)]
 pub struct Region {
     pub waves: Box2,
     pub outputs: Box2,
     pub floor: f64,
+    pub k_max: f64,
 }
 
 impl Region {
@@ -175,6 +179,7 @@ impl Region {
             waves: b,
             outputs: b,
             floor: 0.0,
+            k_max: f64::INFINITY,
         }
     }
 }

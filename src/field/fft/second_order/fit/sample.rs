@@ -12,8 +12,8 @@ use crate::spectrum::{Dispersion, Spectrum};
 const SAMPLE_RADII: usize = 96;
 const SAMPLE_ANGLES: usize = 72;
 
-/// The polar sample of the spectrum in `region` (inside its waves' box, at or above its
-/// floor): waves and their weights (∝ expected variance).
+/// The polar sample of the spectrum in `region` (inside its waves' box, within its k_max,
+/// at or above its floor): waves and their weights (∝ expected variance).
 pub(super) fn spectrum_sample(
     spectrum: &dyn Spectrum,
     dispersion: Dispersion,
@@ -37,7 +37,7 @@ pub(super) fn spectrum_sample(
             for it in 0..SAMPLE_ANGLES {
                 let th = std::f64::consts::TAU * (it as f64 + 0.5) / SAMPLE_ANGLES as f64;
                 let (kx, ky) = (k * th.cos(), k * th.sin());
-                if !bounds.contains(kx, ky) {
+                if !bounds.contains(kx, ky) || k > region.k_max {
                     continue;
                 }
                 let cell = spectrum.amplitude_variance(kx, ky, dk.0, dk.1);

@@ -144,7 +144,7 @@ impl TransformBound {
     }
 
     /// The region of the fit for `comps` of `setup`: their box, the box of the outputs
-    /// kept and, below the whole variance, the least E|h̃0|² among them.
+    /// kept, below the whole variance the least E|h̃0|² among them, and their largest |k|.
     pub fn region(setup: &SpectrumSetup, comps: &[Component], fraction: f64) -> Region {
         let (nx, ny) = (setup.spec.nx, setup.spec.ny);
         let (rx, ry) = reach_of(comps, nx, ny);
@@ -163,6 +163,7 @@ impl TransformBound {
             waves: boxed(rx.k, ry.k),
             outputs: boxed(rx.o, ry.o),
             floor: if floor.is_finite() { floor } else { 0.0 },
+            k_max: comps.iter().map(|c| c.k).fold(0.0, f64::max),
         }
     }
 

@@ -478,6 +478,39 @@ fn at_finite_depth_the_fit_takes_the_lighter_difference_basis_within_autos_bound
 }
 
 #[test]
+fn the_fit_draws_its_pairs_within_the_convergence_limit() {
+    // Deep water, 256² over 2048 m: the limit (ω² ≤ C g / A_max, a circle of |k|) has
+    // its box at the grid's Nyquist, and the waves of the box's corners beyond it are
+    // never paired. The fit's region stops at the paired waves' largest |k|, so its
+    // estimate is within what `auto` accepts (drawn over the whole box it was 1.10 %,
+    // pulled by short, nearly opposed pairs that never occur) and `auto` takes the
+    // fitted method; the bound waves are within 1 % rms and 5 % max of the pair sum's.
+    use crate::config::AUTO_MAX_ESTIMATE;
+    const RMS: f64 = 0.01;
+    const MAX: f64 = 0.05;
+    let sets = [
+        "method=fft",
+        "wind-speed=15",
+        "size=256",
+        "extent=2048",
+        "spectrum=pierson-moskowitz",
+        "spectrum.spreading=hasselmann",
+    ];
+    let params = params_of(&sets);
+    let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+    let setup = setup_at(params.grid_spec(), model.as_ref(), dispersion, 7, 0.0);
+    let so = SecondOrder::within(&setup, 1.0, Some(Cutoff::of(&setup, 2.0)));
+    let region = TransformBound::region(&setup, so.components(), 1.0);
+    let corner = region.waves.kx_max.hypot(region.waves.ky_max);
+    assert!(region.k_max < 0.75 * corner, "{} vs {corner}", region.k_max);
+    let estimate = TransformBound::fit_for(&setup, &so).rel_rms_error;
+    assert!(estimate <= AUTO_MAX_ESTIMATE, "estimate {estimate}");
+    let (rms, max, estimate) = fitted_against_the_pair_sum_within(&sets, 1.0, Some(2.0));
+    eprintln!("rms error {rms:.4}, max {max:.4} (of the rms), estimate {estimate:.4}");
+    assert!(rms <= RMS && max <= MAX, "rms {rms}, max {max}");
+}
+
+#[test]
 fn the_output_coefficients_of_n_m_and_n_minus_m_are_the_same_bits() {
     // The table and a single frame's gather hold the coefficients of m ≥ 0 only and read
     // them for −m: that needs them to depend on |q| alone, to the bit (deep and finite
