@@ -558,8 +558,7 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
         assert!(r.is_finite() && r > 0.0, "{line}");
     }
     // It names the method `auto` took for the same sea (the pair sum where the fit's
-    // estimate is above its bound: at 256² over 2048 m the waves within the limit reach
-    // Nyquist).
+    // estimate is above its bound).
     let sets: Vec<&str> = BASE
         .iter()
         .map(|s| if s.starts_with("size=") { "size=64" } else { s })

@@ -343,7 +343,7 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
     let linear_seq = sequence(&[])?;
     let default_seq = sequence(&[so])?;
     // The method `auto` took for the unlooped sequence (fitted, or the pair sum where the
-    // fit's estimate is above its bound, as on small grids whose waves reach Nyquist).
+    // fit's estimate is above its bound).
     let took = synthesize_checked(&sea(&[so])?, Extras::default())?
         .info
         .second_order

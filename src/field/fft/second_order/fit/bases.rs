@@ -118,8 +118,8 @@ impl Bases {
         }
     }
 
-    /// The difference powers reach no further than the lighter basis's (deep water, and
-    /// finite depth where its estimate serves): where the amplification of the powers'
+    /// The difference powers reach no further than the lighter finite-depth basis's
+    /// (taken where its estimate serves): where the amplification of the powers'
     /// expansion at small |q| is smallest.
     pub fn light_difference(&self) -> bool {
         self.diff_powers <= FINITE_LIGHT_DIFF_POWERS

@@ -291,7 +291,7 @@ impl TransformBound {
     /// The B terms' accumulators are single precision ([`products::Real`]): in deep
     /// water, and at finite depth where the lighter difference basis serves.
     fn b_single(&self) -> bool {
-        self.fit.bases.light_difference()
+        self.depth.is_none() || self.fit.bases.light_difference()
     }
 
     /// The accumulators of a frame: the B terms' (the separable part and the groups of

@@ -28,7 +28,7 @@ pub(super) struct Acc<B, S> {
 }
 
 /// The precision of the accumulators and their forward transforms
-/// ([`TransformBound::precision`]): the S·A terms' double, since they cancel to within
+/// ([`TransformBound::b_single`]): the S·A terms' double, since they cancel to within
 /// single precision's rounding (and the difference powers' expansion of δ^{2m} amplifies
 /// it at small |q|); the B terms' single, except where the fit needs the fuller
 /// difference basis (shallow water, where that amplification is largest). The products

@@ -66,6 +66,24 @@ pub(super) type AccRows<'a, 'r, B, S> = (
     &'a mut [&'r mut [Complex<S>]],
 );
 
+/// A row of y of every accumulator of a set.
+type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
+
+/// Row j of each accumulator of `accs` (rows of px) at j: its rows t + r·j, j < `len`.
+fn rows_by_j<T>(
+    accs: &mut [Vec<Complex<T>>],
+    px: usize,
+    (t, r, len): (usize, usize, usize),
+) -> Vec<Rows<'_, T>> {
+    let mut by_j: Vec<Rows<T>> = (0..len).map(|_| Vec::with_capacity(accs.len())).collect();
+    for a in accs.iter_mut() {
+        for (j, row) in a.chunks_exact_mut(px).skip(t).step_by(r).enumerate() {
+            by_j[j].push(row);
+        }
+    }
+    by_j
+}
+
 /// A factor's first-stage fields: its exponents lo ..= hi.
 pub(super) type Fields = (Factor, (i32, i32));
 
@@ -187,31 +205,14 @@ impl TransformBound {
         // The pass's tasks (ROWS rows of j each), each row holding the row of every
         // accumulator: row i = j·r + t of the accumulators' pass.
         let (r, t) = (passes.count / passes.acc, p / passes.acc);
-        type Rows<'a, T> = Vec<&'a mut [Complex<T>]>;
-        let mut by_j: Vec<(Rows<B>, Rows<S>)> = (0..len)
-            .map(|_| {
-                (
-                    Vec::with_capacity(acc.b.len()),
-                    Vec::with_capacity(acc.sa.len()),
-                )
-            })
-            .collect();
-        for a in acc.b.iter_mut() {
-            let rows = a.chunks_exact_mut(px).skip(t).step_by(r);
-            for (j, row) in rows.enumerate() {
-                by_j[j].0.push(row);
-            }
-        }
-        for a in acc.sa.iter_mut() {
-            let rows = a.chunks_exact_mut(px).skip(t).step_by(r);
-            for (j, row) in rows.enumerate() {
-                by_j[j].1.push(row);
-            }
-        }
+        let at = (t, r, len);
+        let by_j = rows_by_j(&mut acc.b, px, at)
+            .into_iter()
+            .zip(rows_by_j(&mut acc.sa, px, at));
         let mut tasks: Vec<Vec<(Rows<B>, Rows<S>)>> = (0..len.div_ceil(ROWS))
             .map(|_| Vec::with_capacity(ROWS))
             .collect();
-        for (j, rows) in by_j.into_iter().enumerate() {
+        for (j, rows) in by_j.enumerate() {
             tasks[j / ROWS].push(rows);
         }
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
