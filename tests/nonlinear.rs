@@ -502,8 +502,9 @@ fn the_fitted_method_has_tayfun_skewness_at_any_thread_count_and_every_component
 
 /// `bench --second-order` times the linear sea, the pair sum and the fitted method at each
 /// size and states the two ratios to the linear field: both are numbers, and a second-order
-/// sea, which computes the linear one and its bound waves, is not faster than it; and a
-/// looping 48-frame sequence of each, with its ratio.
+/// sea, which computes the linear one and its bound waves, is not faster than it; a
+/// looping 48-frame sequence of each, with its ratio; and the fitted method where the
+/// paired waves fill the grid (4 m cells), deep and at 19 m, with their ratios.
 #[test]
 fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linear_sea() {
     let dir = tempfile::tempdir().unwrap();
@@ -528,6 +529,9 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
         "48 frames, second order (auto)",
         "48 frames, linear, loop 20 s",
         "48 frames, pair sum, loop 20 s",
+        "linear sea, 4 m cells",
+        "second order, fitted, 4 m cells",
+        "second order, fitted, 19 m, 4 m cells",
     ] {
         assert!(out.contains(row), "no row {row:?}:\n{out}");
     }
@@ -556,6 +560,19 @@ fn bench_second_order_times_the_pair_sum_and_the_fitted_method_against_the_linea
     assert_eq!(ratios.len(), 2, "{line}");
     for r in ratios {
         assert!(r.is_finite() && r > 0.0, "{line}");
+    }
+    // Where the paired waves fill the grid (64² over 256 m): two ratios, each at least 1.
+    let filling = out
+        .lines()
+        .find(|l| l.contains("paired waves filling the grid (4 m cells, 256 m)"))
+        .unwrap_or_else(|| panic!("no filling ratio line:\n{out}"));
+    let (_, after) = filling
+        .split_once("linear field: ")
+        .unwrap_or_else(|| panic!("{filling}"));
+    let ratios = numbers(after);
+    assert_eq!(ratios.len(), 3, "deep, 19 and its ratio: {filling}");
+    for r in [ratios[0], ratios[2]] {
+        assert!(r.is_finite() && r >= 1.0, "{filling}");
     }
     // It names the method `auto` took for the same sea (the pair sum where the fit's
     // estimate is above its bound).

@@ -269,28 +269,36 @@ pub(super) fn exports(dir: &std::path::Path, repeats: usize) -> Result<()> {
     Ok(())
 }
 
-/// Second-order seas beside the linear one (`bench --second-order`): Pierson–Moskowitz,
-/// 15 m/s, Hasselmann spreading, n² over 2048 m (so the paired components do not grow
-/// with n), each the whole synthesis of one field (the fit included), as ratios to the
-/// linear field of the same grid and to the bare FFT.
 /// Frames of the looping sequence rows of [`second_order_rows`].
 const LOOP_FRAMES: usize = 48;
+
+/// The cells (m) of the rows where the paired waves fill the grid: the storm's
+/// convergence limit (0.39 rad/m deep, 0.34 at 19 m) lies near half the grid's Nyquist
+/// wavenumber (0.79 rad/m), so the padded box of the paired waves is the whole grid.
+const FILLING_CELL_M: usize = 4;
 
 /// Runs of each 48-frame sequence of `second_order_rows`, the median reported.
 const SEQUENCE_RUNS: usize = 3;
 
+/// Second-order seas beside the linear one (`bench --second-order`): Pierson–Moskowitz,
+/// 15 m/s, Hasselmann spreading, n² over 2048 m (so the paired components do not grow
+/// with n), each the whole synthesis of one field (the fit included), as ratios to the
+/// linear field of the same grid and to the bare FFT; then the same storm in cells of
+/// [`FILLING_CELL_M`] (its paired waves' box the whole grid, where the fitted frame costs
+/// most against the linear one), deep and at 19 m.
 pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Result<()> {
     use crate::config::layers::{Assignment, resolve};
     use crate::field::dynamics::Extras;
     use crate::pipeline::compute::synthesize_checked;
-    let sea = |extra: &[(&str, &str)]| -> Result<Params> {
+    let over = |extent: usize, extra: &[(&str, &str)]| -> Result<Params> {
         let size = n.to_string();
+        let extent = extent.to_string();
         let base = [
             ("method", "fft"),
             ("spectrum", "pierson-moskowitz"),
             ("wind-speed", "15"),
             ("spectrum.spreading", "hasselmann"),
-            ("extent", "2048"),
+            ("extent", extent.as_str()),
             ("size", size.as_str()),
         ];
         let a: Vec<Assignment> = base
@@ -300,6 +308,7 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
             .collect();
         Ok(resolve(None, &a)?)
     };
+    let sea = |extra: &[(&str, &str)]| over(2048, extra);
     let run = |p: &Params, r: usize| -> Result<Duration> {
         synthesize_checked(p, Extras::default())?;
         Ok(time(r, || {
@@ -384,6 +393,43 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
         "  {LOOP_FRAMES}-frame sequence, second order ÷ linear: {:.1}× (auto took {took}), looping {:.1}× (pair sum binned)",
         ratio(default_seq, linear_seq),
         ratio(pairs_loop, linear_loop)
+    );
+    // The paired waves' box the whole grid (three runs each: the second-order rows take
+    // seconds at 4096²).
+    let filling = FILLING_CELL_M * n;
+    let fitted_at = |extra: &[(&str, &str)]| -> Result<Duration> {
+        let with: Vec<_> = [so, ("spectrum.nonlinear_method", "fitted")]
+            .into_iter()
+            .chain(extra.iter().copied())
+            .collect();
+        run(&over(filling, &with)?, repeats.min(3))
+    };
+    let linear_fill = run(&over(filling, &[])?, repeats)?;
+    let deep_fill = fitted_at(&[])?;
+    let shallow_fill = fitted_at(&[("depth", "19")])?;
+    let cells = format!("{FILLING_CELL_M} m cells");
+    print_row(
+        &format!("linear sea, {cells}"),
+        linear_fill,
+        bare,
+        NAME_WIDTH,
+    );
+    print_row(
+        &format!("second order, fitted, {cells}"),
+        deep_fill,
+        bare,
+        NAME_WIDTH,
+    );
+    print_row(
+        &format!("second order, fitted, 19 m, {cells}"),
+        shallow_fill,
+        bare,
+        NAME_WIDTH,
+    );
+    println!(
+        "  paired waves filling the grid ({cells}, {filling} m), fitted ÷ linear field: deep {:.1}×, 19 m {:.1}×",
+        ratio(deep_fill, linear_fill),
+        ratio(shallow_fill, linear_fill)
     );
     Ok(())
 }

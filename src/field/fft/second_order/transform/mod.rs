@@ -13,13 +13,12 @@
 //! the sum terms are Re(A_f A_g) and the difference terms Re(A_f conj A_g); those nearest
 //! q = 0 are their exact pair sums (`exact.rs`; the set-down Σ a_i² K⁻_ii at q = 0).
 
-use rayon::prelude::*;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
 use exact::Exact;
 use grid::{Plan, Pool, Reach};
-use outputs::Outputs;
+use outputs::{Outputs, Put};
 use products::{Acc, Layout, Real, expansion, part, power_term};
 use stages::{AccRows, FIELDS, Factor};
 
@@ -370,13 +369,6 @@ impl TransformBound {
                     power_term(c[1 + g], p, p, t, m, (scale, im), &mut sum);
                 }
             };
-        // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each share's added
-        // (made once the first share's products are done: not held beside its first
-        // stages).
-        let ox_oy = (ox, self.reach.1.o);
-        let columns = (2 * ox_oy.1 + 1).max(0) as usize;
-        let kept_len = (ox + 1).max(0) as usize * columns;
-        let mut kept = Vec::new();
         // The accumulators a share of the rows of y at a time ([`Passes`]): the B terms'
         // (`groups` + 1: the separable part and the weighted parts, multiplied by 2T c),
         // and at finite depth the S·A terms' (`groups`, by c). `run(a, acc)` adds the
@@ -392,13 +384,45 @@ impl TransformBound {
             hi - lo + 1
         };
         let passes = self.passes(fields as usize, acc_bytes);
-        let in_shares = |kept: &mut Vec<C64>, run: &dyn Fn(usize, &mut Acc<B, S>)| {
-            let len = passes.acc_len;
-            let shares = passes.acc > 1;
-            let short_b = shares.then(|| FftPlanner::<B>::new().plan_fft_forward(len));
-            let short_s = shares.then(|| FftPlanner::<S>::new().plan_fft_forward(len));
-            let fwd_b = short_b.as_deref().unwrap_or(plan_b.forward_y());
-            let fwd_s = short_s.as_deref().unwrap_or(plan_s.forward_y());
+        let len = passes.acc_len;
+        let shares = passes.acc > 1;
+        let short_b = shares.then(|| FftPlanner::<B>::new().plan_fft_forward(len));
+        let short_s = shares.then(|| FftPlanner::<S>::new().plan_fft_forward(len));
+        let fwd_b = short_b.as_deref().unwrap_or(plan_b.forward_y());
+        let fwd_s = short_s.as_deref().unwrap_or(plan_s.forward_y());
+        // The kept outputs (lines 0 ..= o_x, columns −o_y ..= o_y), each share's added: in
+        // deep water straight to the half spectrum (single precision, as the B terms'
+        // transforms are: no error beyond theirs); at finite depth in double precision
+        // first (the S·A terms' shares cancel beyond single precision), made once the first
+        // share's products are done (not held beside its first stages).
+        let norm = 0.25 / (px * py) as f64;
+        let oy = self.reach.1.o;
+        let columns = (2 * oy + 1).max(0) as usize;
+        let lines = (ox + 1).max(0) as usize;
+        debug_assert!(on_grid(ox, nx));
+        let mut kept = Vec::new();
+        let mut gather = |a: usize, acc: &Acc<B, S>| {
+            let at = (a, &passes);
+            if finite {
+                kept.resize(lines * columns, C64::new(0.0, 0.0));
+                let put: Put<C64> = &|t, h| *t += h;
+                self.gather(
+                    (&mut kept[..], columns, put),
+                    acc,
+                    &layout,
+                    at,
+                    (fwd_b, fwd_s),
+                );
+            } else {
+                let put: Put<Complex<f32>> = &|t, h| {
+                    let h = h * norm;
+                    *t += Complex::new(h.re as f32, h.im as f32);
+                };
+                let to = (&mut half.data[..lines * ny], ny, put);
+                self.gather(to, acc, &layout, at, (fwd_b, fwd_s));
+            }
+        };
+        let mut in_shares = |run: &dyn Fn(usize, &mut Acc<B, S>)| {
             for a in 0..passes.acc {
                 let mut acc = Acc {
                     b: (0..n_b).map(|_| pool_b.take(px * len)).collect(),
@@ -409,8 +433,7 @@ impl TransformBound {
                     // (The first stages are done with.)
                     self.ones.clear();
                 }
-                kept.resize(kept_len, C64::new(0.0, 0.0));
-                self.gather(kept, &acc, &layout, (a, &passes), (fwd_b, fwd_s));
+                gather(a, &acc);
                 pool_b.give_all(acc.b);
                 pool_s.give_all(acc.sa);
             }
@@ -431,7 +454,7 @@ impl TransformBound {
         };
         if !finite {
             // Deep water: the V fields (s) their own, the last products.
-            in_shares(&mut kept, &|a, acc| {
+            in_shares(&|a, acc| {
                 xy(a, acc);
                 for p in of_share(a) {
                     let fe = (Factor::V, (lo, hi));
@@ -476,38 +499,25 @@ impl TransformBound {
                     power_term(c[g], q1, &one[at(1)..], t, m, (-2.0, im), &mut sum);
                 }
             };
-            in_shares(&mut kept, &|a, acc| {
+            in_shares(&|a, acc| {
                 xy(a, acc);
                 for p in of_share(a) {
                     self.each_cell(b, (q_e, one_e), ((p, &passes), acc), true, sa_terms);
                 }
             });
         }
-        // The kept outputs into the half spectrum: lines n ≤ o_x, columns |m| ≤ o_y (on
-        // the grid), with the exact difference terms nearest q = 0 (the set-down at 0).
-        let oy = ox_oy.1;
-        let exact = self.exact.values(&self.comps, b, self.spec);
-        let norm = 0.25 / (px * py) as f64;
-        half.data
-            .par_chunks_mut(ny)
-            .zip(kept.par_chunks(columns.max(1)))
-            .enumerate()
-            .for_each(|(n, (line, sums))| {
-                debug_assert!(on_grid(n as i64, nx));
-                // This line's exact outputs (in the order of n, then m).
-                let from = exact.partition_point(|e| e.0 < n as i64);
-                let to = exact.partition_point(|e| e.0 <= n as i64);
-                let exact = &exact[from..to];
-                for (j, &h) in sums.iter().enumerate() {
-                    let m = j as i64 - oy;
-                    let mut h = h * norm;
-                    if let Some(&(_, _, e)) = exact.iter().find(|e| e.1 == m) {
-                        h += e;
-                    }
-                    line[m.rem_euclid(ny as i64) as usize] +=
-                        Complex::new(h.re as f32, h.im as f32);
-                }
-            });
+        // Finite depth: the kept outputs into the half spectrum (column m at m mod ny).
+        for (line, sums) in half.data.chunks_mut(ny).zip(kept.chunks(columns.max(1))) {
+            for m in -oy..=oy {
+                let h = sums[m.rem_euclid(columns as i64) as usize] * norm;
+                line[m.rem_euclid(ny as i64) as usize] += Complex::new(h.re as f32, h.im as f32);
+            }
+        }
+        // The exact difference terms nearest q = 0 (the set-down at 0).
+        for (n, m, e) in self.exact.values(&self.comps, b, self.spec) {
+            let at = n as usize * ny + m.rem_euclid(ny as i64) as usize;
+            half.data[at] += Complex::new(e.re as f32, e.im as f32);
+        }
     }
 }
 

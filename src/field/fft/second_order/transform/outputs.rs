@@ -88,6 +88,9 @@ impl Outputs {
     }
 }
 
+/// How a share's value at a kept output is added to where the outputs are kept.
+pub(super) type Put<'a, T> = &'a (dyn Fn(&mut T, C64) + Sync);
+
 impl TransformBound {
     /// Tabulates the output coefficients for the frames to come (a sequence: the same at
     /// every time, 8 bytes × (the bases' functions + 1) an output kept of m ≥ 0; the
@@ -98,7 +101,8 @@ impl TransformBound {
     }
 
     /// Transforms the accumulators `acc` of share p of `passes` along y and adds them at
-    /// each kept output (lines 0 ..= o_x, columns −o_y ..= o_y) to `kept`. They are the
+    /// each kept output (lines 0 ..= o_x, columns −o_y ..= o_y) by `put` to the rows of
+    /// `to` (rows of `stride`, column m at m mod `stride`). They are the
     /// share's py/P_a rows of y of px, transformed along x already
     /// ([`super::stages::Passes`]); `fwd_b` and `fwd_s` transform py/P_a values in their
     /// precisions. The B terms' are the separable part, then the slots of `layout` times
@@ -108,9 +112,9 @@ impl TransformBound {
     /// made, and only the kept lines' columns are transformed). A share's transform at
     /// ky index m is the whole transform's part of its rows of y: times e^{−2πi m p/py},
     /// the shares add up to the whole.
-    pub(super) fn gather<B: Real, S: Real>(
+    pub(super) fn gather<B: Real, S: Real, T: Send>(
         &self,
-        kept: &mut [C64],
+        (to, stride, put): (&mut [T], usize, Put<T>),
         acc: &Acc<B, S>,
         layout: &Layout,
         (p, passes): (usize, &Passes),
@@ -133,13 +137,13 @@ impl TransformBound {
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         // Output lines a task: their columns n (and −n) are neighbours in each row.
         const LINES: usize = 4;
-        kept.par_chunks_mut((columns * LINES).max(1))
+        to.par_chunks_mut((stride * LINES).max(1))
             .enumerate()
             .for_each_init(
                 || ((Vec::new(), Vec::new()), (Vec::new(), Vec::new())),
                 |(cols_b, cols_s), (c, lines)| {
                     let n0 = c * LINES;
-                    let nl = lines.len() / columns.max(1);
+                    let nl = lines.len() / stride.max(1);
                     // Column l < nl of accumulator f is line n0 + l's (x = n), column
                     // nl + l its mirror's (x = −n): at `(f·2nl + column)·len`.
                     let xs: Vec<usize> = (0..2 * nl)
@@ -151,7 +155,7 @@ impl TransformBound {
                     columns_of(&acc.b, (&xs, px), fwd_b, cols_b);
                     columns_of(&acc.sa, (&xs, px), fwd_s, cols_s);
                     let (cols_b, cols_s) = (&cols_b.0, &cols_s.0);
-                    for (l, line) in lines.chunks_exact_mut(columns).enumerate() {
+                    for (l, line) in lines.chunks_exact_mut(stride).enumerate() {
                         let n = (n0 + l) as i64;
                         // Without the table, the line's coefficients once for ±m.
                         let of_line: Vec<_> = match outputs {
@@ -160,7 +164,7 @@ impl TransformBound {
                                 .map(|m| coefficients_at(&self.fit, self.spec, depth, n, m))
                                 .collect(),
                         };
-                        for (j, h) in line.iter_mut().enumerate() {
+                        for j in 0..columns {
                             let m = j as i64 - oy;
                             let (ky, ky_neg) =
                                 (m.rem_euclid(py as i64), (-m).rem_euclid(py as i64));
@@ -193,24 +197,22 @@ impl TransformBound {
                                 Some(Part::Diff(m)) if !exact_diff => v * (k * cm[m]),
                                 _ => C64::new(0.0, 0.0),
                             };
-                            // In one share, into the output itself; else this share's
-                            // part, then added with its twiddle.
-                            let mut part = C64::new(0.0, 0.0);
-                            let into = if turns.is_empty() { &mut *h } else { &mut part };
+                            // This share's part, with its twiddle in several.
                             let (s, d) = unpack(0);
-                            *into = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
+                            let mut part = s + if exact_diff { C64::new(0.0, 0.0) } else { d };
                             for (f, slot) in (1..n_b).zip(&layout.slots) {
                                 let (s, d) = unpack(f);
-                                *into +=
+                                part +=
                                     weighted(s, slot[0], 2.0 * t) + weighted(d, slot[1], 2.0 * t);
                             }
                             for (f, slot) in (n_b..n_acc).zip(&layout.slots) {
                                 let (s, d) = unpack(f);
-                                *into += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
+                                part += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
                             }
                             if !turns.is_empty() {
-                                *h += turns[(ky as usize * p) % py] * part;
+                                part *= turns[(ky as usize * p) % py];
                             }
+                            put(&mut line[m.rem_euclid(stride as i64) as usize], part);
                         }
                     }
                 },
