@@ -389,7 +389,9 @@ pub struct BenchArgs {
     /// the variance within the convergence limit and the fitted method of every wave
     /// within it, as ratios to the linear field; and 48 frames of the sea (medians of
     /// three runs), unlooped (the default method) and looping (T = 20 s, the pair sum
-    /// binned), linear and second order, with their ratios
+    /// binned), linear and second order, with their ratios; and the fitted method where
+    /// the paired waves' box fills the grid (the same storm in 4 m cells, n² over 4n m),
+    /// deep and at 19 m
     #[arg(long)]
     pub second_order: bool,
     /// Worker threads [default: all cores]

@@ -106,27 +106,52 @@ impl Exact {
     /// The exact difference term at each exact output, (n, m, value) with the half
     /// spectrum's weight: Σ over the ordered pairs (i, j) of k_i − k_j = q of
     /// b_i conj(b_j) K⁻_ij, and at q = 0 the set-down Σ |b_i|² K⁻_ii (held). Each
-    /// output's sum in the waves' order (the same bits at any thread count).
+    /// output's sum in the waves' order (the same bits at any thread count). The waves are
+    /// read a block at a time for a share of the outputs (each output's partners lie
+    /// within its |q| of the wave, near it in the waves' order by kx row), so that they
+    /// are read from memory once a share and not once an output: over long extents the
+    /// exact outputs are many (their |q| is set by the depth, their count by the extent²).
     pub(super) fn values(&self, comps: &[Wave], b: &[C64], spec: GridSpec) -> Vec<(i64, i64, C64)> {
-        let input = |c: &Wave| {
-            let (kx, ky) = c.k(spec);
-            [kx, ky, c.s * c.s, c.s, c.q]
-        };
-        self.outputs
+        const BLOCK: usize = 2048;
+        // Each wave's input to the kernel, once (not twice a pair).
+        let inputs: Vec<[f64; 5]> = comps
             .par_iter()
-            .map(|&(n, m, t)| {
-                if n == 0 && m == 0 {
-                    return (n, m, C64::new(self.setdown, 0.0));
+            .map(|c| {
+                let (kx, ky) = c.k(spec);
+                [kx, ky, c.s * c.s, c.s, c.q]
+            })
+            .collect();
+        let zero = C64::new(0.0, 0.0);
+        let mut sums = vec![zero; self.outputs.len()];
+        let share = self
+            .outputs
+            .len()
+            .div_ceil(2 * rayon::current_num_threads())
+            .max(1);
+        sums.par_chunks_mut(share)
+            .zip(self.outputs.par_chunks(share))
+            .for_each(|(sums, outputs)| {
+                for (block, i0) in comps.chunks(BLOCK).zip((0..).step_by(BLOCK)) {
+                    for (sum, &(n, m, t)) in sums.iter_mut().zip(outputs) {
+                        if n == 0 && m == 0 {
+                            continue;
+                        }
+                        for (i, c) in (i0..).zip(block) {
+                            let Some(j) = self.wave(i64::from(c.n) - n, i64::from(c.m) - m) else {
+                                continue;
+                            };
+                            let k = kernel_minus_at(inputs[i], inputs[j], t);
+                            *sum += b[i] * b[j].conj() * k;
+                        }
+                    }
                 }
-                let mut sum = C64::new(0.0, 0.0);
-                for (i, c) in comps.iter().enumerate() {
-                    let Some(j) = self.wave(i64::from(c.n) - n, i64::from(c.m) - m) else {
-                        continue;
-                    };
-                    let k = kernel_minus_at(input(c), input(&comps[j]), t);
-                    sum += b[i] * b[j].conj() * k;
-                }
-                (n, m, sum)
+            });
+        self.outputs
+            .iter()
+            .zip(sums)
+            .map(|(&(n, m, _), sum)| match (n, m) {
+                (0, 0) => (n, m, C64::new(self.setdown, 0.0)),
+                _ => (n, m, sum),
             })
             .collect()
     }

@@ -506,6 +506,9 @@ impl TransformBound {
                 }
             });
         }
+        // (The accumulators are done with: freed before the exact outputs' inputs are made.)
+        pool_b.clear();
+        pool_s.clear();
         // Finite depth: the kept outputs into the half spectrum (column m at m mod ny).
         for (line, sums) in half.data.chunks_mut(ny).zip(kept.chunks(columns.max(1))) {
             for m in -oy..=oy {
