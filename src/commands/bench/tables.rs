@@ -408,24 +408,13 @@ pub(super) fn second_order_rows(n: usize, repeats: usize, bare: Duration) -> Res
     let deep_fill = fitted_at(&[])?;
     let shallow_fill = fitted_at(&[("depth", "19")])?;
     let cells = format!("{FILLING_CELL_M} m cells");
-    print_row(
-        &format!("linear sea, {cells}"),
-        linear_fill,
-        bare,
-        NAME_WIDTH,
-    );
-    print_row(
-        &format!("second order, fitted, {cells}"),
-        deep_fill,
-        bare,
-        NAME_WIDTH,
-    );
-    print_row(
-        &format!("second order, fitted, 19 m, {cells}"),
-        shallow_fill,
-        bare,
-        NAME_WIDTH,
-    );
+    for (name, d) in [
+        ("linear sea", linear_fill),
+        ("second order, fitted", deep_fill),
+        ("second order, fitted, 19 m", shallow_fill),
+    ] {
+        print_row(&format!("{name}, {cells}"), d, bare, NAME_WIDTH);
+    }
     println!(
         "  paired waves filling the grid ({cells}, {filling} m), fitted ÷ linear field: deep {:.1}×, 19 m {:.1}×",
         ratio(deep_fill, linear_fill),

@@ -24,6 +24,9 @@ use crate::grid::GridSpec;
 /// T(|q|) / s_p² at or below which a finite-depth difference output is its pair sum.
 pub(super) const EXACT_T: f64 = 0.1;
 
+/// The waves [`Exact::values`] reads at a time for a share of the outputs.
+pub(super) const WAVE_BLOCK: usize = 2048;
+
 /// The outputs whose difference term is the pair sum, and where the waves lie.
 pub(super) struct Exact {
     /// T at or below which an output is exact: [`EXACT_T`]·s_p², 0 in deep water (q = 0).
@@ -112,7 +115,12 @@ impl Exact {
     /// are read from memory once a share and not once an output: over long extents the
     /// exact outputs are many (their |q| is set by the depth, their count by the extent²).
     pub(super) fn values(&self, comps: &[Wave], b: &[C64], spec: GridSpec) -> Vec<(i64, i64, C64)> {
-        const BLOCK: usize = 2048;
+        let setdown = (0, 0, C64::new(self.setdown, 0.0));
+        if self.at.is_empty() {
+            // Deep water: the exact output is q = 0 alone, its set-down held (no pairs).
+            debug_assert!(self.outputs.iter().all(|o| (o.0, o.1) == (0, 0)));
+            return vec![setdown; self.outputs.len()];
+        }
         // Each wave's input to the kernel, once (not twice a pair).
         let inputs: Vec<[f64; 5]> = comps
             .par_iter()
@@ -131,7 +139,7 @@ impl Exact {
         sums.par_chunks_mut(share)
             .zip(self.outputs.par_chunks(share))
             .for_each(|(sums, outputs)| {
-                for (block, i0) in comps.chunks(BLOCK).zip((0..).step_by(BLOCK)) {
+                for (block, i0) in comps.chunks(WAVE_BLOCK).zip((0..).step_by(WAVE_BLOCK)) {
                     for (sum, &(n, m, t)) in sums.iter_mut().zip(outputs) {
                         if n == 0 && m == 0 {
                             continue;
@@ -150,7 +158,7 @@ impl Exact {
             .iter()
             .zip(sums)
             .map(|(&(n, m, _), sum)| match (n, m) {
-                (0, 0) => (n, m, C64::new(self.setdown, 0.0)),
+                (0, 0) => setdown,
                 _ => (n, m, sum),
             })
             .collect()

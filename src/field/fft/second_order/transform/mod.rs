@@ -401,7 +401,7 @@ impl TransformBound {
         let lines = (ox + 1).max(0) as usize;
         debug_assert!(on_grid(ox, nx));
         let mut kept = Vec::new();
-        let mut gather = |a: usize, acc: &Acc<B, S>| {
+        let mut add_share = |a: usize, acc: &Acc<B, S>| {
             let at = (a, &passes);
             if finite {
                 kept.resize(lines * columns, C64::new(0.0, 0.0));
@@ -433,7 +433,7 @@ impl TransformBound {
                     // (The first stages are done with.)
                     self.ones.clear();
                 }
-                gather(a, &acc);
+                add_share(a, &acc);
                 pool_b.give_all(acc.b);
                 pool_s.give_all(acc.sa);
             }

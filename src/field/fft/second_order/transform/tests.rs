@@ -543,3 +543,67 @@ fn the_output_coefficients_of_n_m_and_n_minus_m_are_the_same_bits() {
         assert_ne!(a, b);
     }
 }
+
+#[test]
+fn the_exact_outputs_read_in_blocks_equal_their_pair_sums_to_the_bit() {
+    // 19 m over 4096 m at 128²: every wave of the grid within the limit (more than two
+    // blocks of them) and the exact outputs nearest q = 0 of a long extent. Each one's
+    // sum, read a block of waves at a time for a share of the outputs, is the pair sum
+    // over the waves in their order, Σ_i b_i conj(b_j) K⁻(k_i, k_j) with k_j = k_i − q.
+    let sets = [
+        "method=fft",
+        "wind-speed=15",
+        "size=128",
+        "extent=4096",
+        "spectrum=pierson-moskowitz",
+        "spectrum.spreading=hasselmann",
+        "depth=19",
+    ];
+    let params = params_of(&sets);
+    let spec = params.grid_spec();
+    let (model, dispersion) = crate::field::spectrum_model(&params).unwrap();
+    let setup = setup_at(spec, model.as_ref(), dispersion, 3, 0.0);
+    let (tb, _) = TransformBound::for_setup(&setup, 1.0, Some(Cutoff::of(&setup, 2.0)));
+    assert!(
+        tb.comps.len() > 2 * exact::WAVE_BLOCK,
+        "{} waves",
+        tb.comps.len()
+    );
+    let b: Vec<C64> = tb
+        .comps
+        .iter()
+        .map(|c| C64::from_polar(2.0 * c.rho, c.phi))
+        .collect();
+    let got = tb.exact.values(&tb.comps, &b, spec);
+    assert!(got.len() > 4, "{} exact outputs", got.len());
+    let at: std::collections::HashMap<(i32, i32), usize> = tb
+        .comps
+        .iter()
+        .enumerate()
+        .map(|(i, c)| ((c.n, c.m), i))
+        .collect();
+    let input = |c: &Wave| {
+        let (kx, ky) = c.k(spec);
+        [kx, ky, c.s * c.s, c.s, c.q]
+    };
+    for &(n, m, v) in &got {
+        if (n, m) == (0, 0) {
+            continue;
+        }
+        let t = outputs::output_t(spec, tb.depth, n, m).3;
+        let mut want = C64::new(0.0, 0.0);
+        for (i, c) in tb.comps.iter().enumerate() {
+            let key = (c.n - n as i32, c.m - m as i32);
+            if let Some(&j) = at.get(&key) {
+                let k = crate::field::fft::second_order::kernel_minus_at(
+                    input(c),
+                    input(&tb.comps[j]),
+                    t,
+                );
+                want += b[i] * b[j].conj() * k;
+            }
+        }
+        assert!(want != C64::new(0.0, 0.0), "({n}, {m}): no pairs");
+        assert_eq!(v, want, "output ({n}, {m})");
+    }
+}
