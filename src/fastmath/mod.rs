@@ -60,6 +60,7 @@ const SIGN_MASK: u64 = 0x8000_0000_0000_0000;
 mod base2_f32;
 mod exp;
 mod ln;
+mod powi;
 mod round;
 mod sin_cos;
 
@@ -68,6 +69,7 @@ pub use exp::exp;
 pub(crate) use exp::{exp_fast, exp_is_special};
 pub use ln::ln;
 pub(crate) use ln::{ln_is_special, ln_positive_normal};
+pub use powi::powi;
 pub use round::{round_clamped_f32, round_clamped_f64};
 #[cfg(test)]
 pub(crate) use sin_cos::SIN_COS_CW_LIMIT;

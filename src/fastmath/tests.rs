@@ -615,3 +615,17 @@ fn speed_vs_std() {
     compare!("sin_cos [0, 2π)", &angle_in, ours, theirs);
     compare!("sin_cos [0, 3000)", &phase_in, ours, theirs);
 }
+
+#[test]
+fn powi_has_the_bits_of_std_powi() {
+    // Exponents as the second-order fields use them and beyond, bases over many octaves
+    // (both signs); `black_box` keeps std's exponent a run-time value (its call).
+    let mut rng = Rng(11);
+    for _ in 0..20_000 {
+        let x = rng.uniform(-8.0, 8.0) * 2f64.powf(rng.uniform(-20.0, 20.0));
+        for n in -12..=12 {
+            let theirs = x.powi(std::hint::black_box(n));
+            assert_eq!(powi(x, n).to_bits(), theirs.to_bits(), "{x:e}^{n}");
+        }
+    }
+}

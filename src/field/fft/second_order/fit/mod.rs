@@ -46,6 +46,7 @@
 //! the default `auto` takes the fitted method where the estimate is within its margin.
 
 use crate::config::AUTO_MAX_ESTIMATE;
+use crate::fastmath::powi;
 use crate::spectrum::{Dispersion, Spectrum};
 use rayon::prelude::*;
 
@@ -125,7 +126,7 @@ pub struct KernelFit {
     /// √|q| of the nodes, √(rad/m).
     nodes: Vec<f64>,
     /// [term][node][basis function].
-    coef: [Vec<Vec<f64>>; 2],
+    coef: [Vec<[f64; MAX_NB]>; 2],
     /// The bases of the two terms.
     pub bases: Bases,
     /// Angle nodes over [0, π).
@@ -274,12 +275,14 @@ impl KernelFit {
         let nodes: Vec<f64> = (0..qn_count)
             .map(|i| q_max.sqrt() * i as f64 / (qn_count - 1) as f64)
             .collect();
-        let empty = |term: usize| vec![vec![0.0; bases.len(term)]; qn_count * na];
+        // (Each node's coefficients in a fixed array, zero beyond the term's count: the
+        // blend of two nodes is then one loop of fixed length.)
+        let empty = || vec![[0.0; MAX_NB]; qn_count * na];
         if waves.is_empty() {
             return Self {
                 s_ref: 1.0,
                 nodes,
-                coef: [empty(0), empty(1)],
+                coef: [empty(), empty()],
                 bases,
                 na,
                 rel_rms_error: 0.0,
@@ -353,9 +356,9 @@ impl KernelFit {
                 atb.iter_mut().zip(&pb).for_each(|(a, p)| *a += p);
             });
             let sol = solve_ridge(&mut ata, &mut atb, dim);
-            let mut c = empty(term);
+            let mut c = empty();
             for (node, row) in c.iter_mut().enumerate() {
-                row.copy_from_slice(&sol[node * nb..(node + 1) * nb]);
+                row[..nb].copy_from_slice(&sol[node * nb..(node + 1) * nb]);
             }
             c
         };
@@ -442,7 +445,7 @@ impl KernelFit {
         let tt = t / (self.s_ref * self.s_ref);
         for (v, f) in sum.iter_mut().zip(&self.bases.sum) {
             if f.t_power != 0 {
-                *v *= tt.powi(f.t_power);
+                *v *= powi(tt, f.t_power);
             }
         }
         let mut diff = self.coefficients(1, hats);

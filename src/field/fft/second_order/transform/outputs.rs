@@ -12,7 +12,7 @@ use super::super::C64;
 use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
 use super::products::{Acc, Layout, Part, Real, wide};
-use super::stages::Passes;
+use super::stages::{Passes, wrapped};
 use crate::grid::GridSpec;
 
 /// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
@@ -127,13 +127,15 @@ impl TransformBound {
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
-        // e^{−2πi k/py} of k < py (the shares' twiddles; none in one share).
+        // e^{−2πi ky p/py} of each ky < py (the share's twiddles; none in one share).
         let turns: Vec<C64> = match passes.acc {
             1 => Vec::new(),
             _ => (0..py)
-                .map(|k| C64::from_polar(1.0, -TAU * k as f64 / py as f64))
+                .map(|ky| C64::from_polar(1.0, -TAU * ((ky * p) % py) as f64 / py as f64))
                 .collect(),
         };
+        // ky mod `len` of each ky < py: its place in the share's transform.
+        let fold: Vec<u32> = (0..py).map(|ky| (ky % len) as u32).collect();
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         // Output lines a task: their columns n (and −n) are neighbours in each row.
         const LINES: usize = 4;
@@ -149,7 +151,7 @@ impl TransformBound {
                     let xs: Vec<usize> = (0..2 * nl)
                         .map(|l| {
                             let n = (n0 + l % nl) as i64;
-                            (if l < nl { n } else { -n }).rem_euclid(px as i64) as usize
+                            wrapped(if l < nl { n } else { -n }, px)
                         })
                         .collect();
                     columns_of(&acc.b, (&xs, px), fwd_b, cols_b);
@@ -166,10 +168,9 @@ impl TransformBound {
                         };
                         for j in 0..columns {
                             let m = j as i64 - oy;
-                            let (ky, ky_neg) =
-                                (m.rem_euclid(py as i64), (-m).rem_euclid(py as i64));
-                            let here = l * len + ky as usize % len;
-                            let there = (nl + l) * len + ky_neg as usize % len;
+                            let (ky, ky_neg) = (wrapped(m, py), wrapped(-m, py));
+                            let here = l * len + fold[ky] as usize;
+                            let there = (nl + l) * len + fold[ky_neg] as usize;
                             // The sum (re) and difference (im) parts of accumulator f's
                             // packed transform.
                             let unpack = |f: usize| {
@@ -210,9 +211,9 @@ impl TransformBound {
                                 part += weighted(s, slot[0], 1.0) + weighted(d, slot[1], 1.0);
                             }
                             if !turns.is_empty() {
-                                part *= turns[(ky as usize * p) % py];
+                                part *= turns[ky];
                             }
-                            put(&mut line[m.rem_euclid(stride as i64) as usize], part);
+                            put(&mut line[wrapped(m, stride)], part);
                         }
                     }
                 },

@@ -15,6 +15,7 @@ use super::super::C64;
 use super::super::fit::POWERS;
 use super::products::{Acc, Real};
 use super::{TransformBound, Wave};
+use crate::fastmath::powi;
 use crate::grid::GridSpec;
 
 /// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
@@ -40,6 +41,9 @@ struct Pass<'a> {
     len: usize,
     /// e^{2πi m p/py} of each column m (empty in one pass).
     twiddle: Vec<C64>,
+    /// m mod `len` of each column m < py (where a component folds to; no division a
+    /// component).
+    fold: Vec<u32>,
     /// The inverse transform of `len`.
     inv: &'a dyn Fft<f64>,
 }
@@ -52,12 +56,22 @@ impl<'a> Pass<'a> {
                 .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
                 .collect(),
         };
+        let len = py / passes;
         Self {
-            len: py / passes,
+            len,
             twiddle,
+            fold: (0..py).map(|m| (m % len) as u32).collect(),
             inv,
         }
     }
+}
+
+/// Index `i` of a signed axis (|i| < `n`) wrapped to 0 .. n (`rem_euclid` without its
+/// division).
+#[inline(always)]
+pub(super) fn wrapped(i: i64, n: usize) -> usize {
+    debug_assert!(i.unsigned_abs() < n as u64);
+    (if i < 0 { i + n as i64 } else { i }) as usize
 }
 
 /// A row of y of every accumulator of a share: the B terms', the S·A terms'.
@@ -143,7 +157,7 @@ impl TransformBound {
                 }
                 let row_of = self.rows[r]..self.rows[r + 1];
                 for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
-                    let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+                    let col = wrapped(i64::from(c.m), py);
                     let bi = match pass.twiddle.get(col) {
                         Some(&t) => bi * t,
                         None => bi,
@@ -151,8 +165,8 @@ impl TransformBound {
                     // f(k_i)·x^e·b_i of e = lo, lo + 1, …: one multiplication by x an
                     // exponent.
                     let x = c.s.abs() / self.fit.s_ref;
-                    let mut w = bi * (f.of(c, self.spec) * x.powi(lo));
-                    let at = col % len;
+                    let mut w = bi * (f.of(c, self.spec) * powi(x, lo));
+                    let at = pass.fold[col] as usize;
                     for row in rows.iter_mut() {
                         row[at] += w;
                         w *= x;
@@ -218,6 +232,11 @@ impl TransformBound {
         // The kx columns of the components (|n| ≤ k_x, wrapped) and those between them,
         // zero before the second stage.
         let gap = (kx + 1) as usize..(px as i64 - kx) as usize;
+        // Kx row r = n + k_x (n = −k_x ..= k_x) goes to column n, wrapped (px > 2k_x +
+        // o_x: the wrapped indices never meet).
+        let cols: Vec<usize> = (0..self.rows.len() - 1)
+            .map(|r| wrapped(r as i64 - kx, px))
+            .collect();
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.
         let rows_of = |ones: &[Vec<C64>],
@@ -231,10 +250,7 @@ impl TransformBound {
                 for row in block.chunks_exact_mut(px) {
                     row[gap.clone()].fill(zero);
                 }
-                // Kx row r = n + k_x (n = −k_x ..= k_x) into column n, wrapped (px >
-                // 2k_x + o_x: the wrapped indices never meet).
-                for (r, from) in one.chunks_exact(self.row_stride(len)).enumerate() {
-                    let col = (r as i64 - kx).rem_euclid(px as i64) as usize;
+                for (&col, from) in cols.iter().zip(one.chunks_exact(self.row_stride(len))) {
                     for (jj, &v) in from[j0..j0 + nj].iter().enumerate() {
                         block[jj * px + col] = v;
                     }
