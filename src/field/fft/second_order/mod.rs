@@ -230,8 +230,9 @@ pub struct SecondOrder {
     depth: Option<f64>,
     nx: usize,
     ny: usize,
-    /// The kernel inputs of `comps` as columns (the pair sum's line kernels).
-    columns: pairs::Columns,
+    /// The kernel inputs of `comps` as columns (the pair sum's line kernels), made at the
+    /// pair sum's first use: 56 bytes a wave the fitted method never reads.
+    columns: std::sync::OnceLock<pairs::Columns>,
     pub info: SecondOrderInfo,
 }
 
@@ -413,7 +414,7 @@ impl SecondOrder {
             ..info
         };
         Self {
-            columns: pairs::Columns::of(&comps, depth),
+            columns: std::sync::OnceLock::new(),
             comps,
             lines,
             occupied,

@@ -199,10 +199,16 @@ where
 }
 
 impl SecondOrder {
+    /// The components' kernel inputs as columns, made at the first call.
+    pub(super) fn columns(&self) -> &Columns {
+        self.columns
+            .get_or_init(|| Columns::of(&self.comps, self.depth))
+    }
+
     /// The full-plane Z of the bound waves at `setup`'s time (nx lines of ny, both in FFT
     /// order), and the sum and difference pairs kept on the grid.
     pub fn bound_plane(&self, setup: &SpectrumSetup) -> (Vec<C64>, u64, u64) {
-        self.bound_plane_with(setup, &self.columns)
+        self.bound_plane_with(setup, self.columns())
     }
 
     /// [`Self::bound_plane`] with the kernels `plus(a, b, a is b)` and `minus(a, b)` of
@@ -232,8 +238,8 @@ impl SecondOrder {
     ) -> (Vec<C64>, u64, u64) {
         let (nx, ny) = (self.nx, self.ny);
         let b = Amps::new(self.amplitudes(setup));
-        let ms = &self.columns.m;
-        let isa = self.columns.isa;
+        let ms = &self.columns().m;
+        let isa = self.columns().isa;
         let mut z = vec![C64::new(0.0, 0.0); nx * ny];
         let counts: Vec<(u64, u64)> = z
             .par_chunks_mut(ny)
@@ -299,8 +305,8 @@ impl SecondOrder {
             return (0, 0);
         }
         let (b, bre, bim) = (&amps.b, &amps.re, &amps.im);
-        let ms = &self.columns.m;
-        let isa = self.columns.isa;
+        let ms = &self.columns().m;
+        let isa = self.columns().isa;
         let longest = self.lines.iter().map(|r| r.len()).max().unwrap_or(0);
         // The resolved outputs m: lo ..= hi.
         let (lo, hi) = resolved_span(self.ny);

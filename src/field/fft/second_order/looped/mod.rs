@@ -232,7 +232,7 @@ impl LoopedBound {
                         let at = (ms[i] - m_lo, nus[i] - nu_lo);
                         add_binned(&mut z, width, at, sign, (&ms[js.clone()], &nus[js]), v);
                     };
-                let counts = so.row_pairs(signed_index(row, nx), &amps, &so.columns, &mut add);
+                let counts = so.row_pairs(signed_index(row, nx), &amps, so.columns(), &mut add);
                 let z = z
                     .iter()
                     .map(|v| Complex32::new(v.re as f32, v.im as f32))
