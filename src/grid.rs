@@ -170,6 +170,15 @@ pub fn signed_index(idx: usize, len: usize) -> i64 {
     }
 }
 
+/// FFT bin of signed index `n` (|n| < `len`) of a transform of length `len`: the inverse
+/// of [`signed_index`] (`n.rem_euclid(len)` without its division, for indices in hot
+/// loops).
+#[inline(always)]
+pub fn bin_index(n: i64, len: usize) -> usize {
+    debug_assert!(n.unsigned_abs() < len as u64);
+    (if n < 0 { n + len as i64 } else { n }) as usize
+}
+
 /// True when the wavevector `(n, m)` takes part in the synthesis (DC and the Nyquist lines are left out: see `field::fft`).
 #[inline]
 pub fn is_resolved(n: i64, m: i64, nx: usize, ny: usize) -> bool {
@@ -193,6 +202,26 @@ mod tests {
         let g = Grid::new(s, (0..8).map(|v| v as f32).collect());
         assert_eq!(g.get(1, 1), 5.0, "row-major: (i=1, j=1) is element 1·4+1");
         assert_eq!(g.row(1), &[4.0, 5.0, 6.0, 7.0]);
+    }
+
+    #[test]
+    fn bin_index_is_rem_euclid_and_inverts_signed_index() {
+        for len in [1usize, 2, 7, 8, 1536] {
+            for n in 1 - len as i64..len as i64 {
+                assert_eq!(
+                    bin_index(n, len),
+                    n.rem_euclid(len as i64) as usize,
+                    "{n} of {len}"
+                );
+            }
+            for idx in 0..len {
+                assert_eq!(
+                    bin_index(signed_index(idx, len), len),
+                    idx,
+                    "bin {idx} of {len}"
+                );
+            }
+        }
     }
 
     #[test]

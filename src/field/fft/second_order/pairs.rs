@@ -238,8 +238,8 @@ impl SecondOrder {
     ) -> (Vec<C64>, u64, u64) {
         let (nx, ny) = (self.nx, self.ny);
         let b = Amps::new(self.amplitudes(setup));
-        let ms = &self.columns().m;
-        let isa = self.columns().isa;
+        let columns = self.columns();
+        let (ms, isa) = (&columns.m, columns.isa);
         let mut z = vec![C64::new(0.0, 0.0); nx * ny];
         let counts: Vec<(u64, u64)> = z
             .par_chunks_mut(ny)
@@ -305,8 +305,8 @@ impl SecondOrder {
             return (0, 0);
         }
         let (b, bre, bim) = (&amps.b, &amps.re, &amps.im);
-        let ms = &self.columns().m;
-        let isa = self.columns().isa;
+        let columns = self.columns();
+        let (ms, isa) = (&columns.m, columns.isa);
         let longest = self.lines.iter().map(|r| r.len()).max().unwrap_or(0);
         // The resolved outputs m: lo ..= hi.
         let (lo, hi) = resolved_span(self.ny);

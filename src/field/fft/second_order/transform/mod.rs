@@ -28,7 +28,7 @@ use super::{
     self_kernels,
 };
 use crate::fastmath;
-use crate::grid::{GridSpec, signed_index};
+use crate::grid::{GridSpec, bin_index, signed_index};
 
 /// What a frame reads of a component (40 bytes instead of a [`Component`]'s 88: the
 /// components are held for the sequence; the wavevector is its indices').
@@ -60,22 +60,6 @@ impl From<&Component> for Wave {
             phi: c.phi,
         }
     }
-}
-
-/// The waves of `comps`, in their order, made from the last a block at a time with the
-/// components' array shortened behind them: the two are not held whole at once (285 and
-/// 129 MB for the 3.2 M paired waves of 4096² in 4 m cells).
-fn waves_of(mut comps: Vec<Component>) -> Vec<Wave> {
-    const BLOCK: usize = 1 << 16;
-    let mut waves = Vec::with_capacity(comps.len());
-    while !comps.is_empty() {
-        let keep = comps.len().saturating_sub(BLOCK);
-        waves.extend(comps[keep..].iter().rev().map(Wave::from));
-        comps.truncate(keep);
-        comps.shrink_to_fit();
-    }
-    waves.reverse();
-    waves
 }
 
 /// The bound waves of a set of components through the fitted kernels, by transforms.
@@ -130,21 +114,23 @@ impl TransformBound {
             .sum();
         let w = (2 * reach.0.k + 1) as usize;
         // The waves by kx row (a stable sort: each row's in the order given).
-        let mut comps = waves_of(comps);
-        comps.sort_by_key(|c| c.n);
+        let mut waves: Vec<Wave> = comps.iter().map(Wave::from).collect();
+        // (The components are done with: not held beside the waves for the rest.)
+        drop(comps);
+        waves.sort_by_key(|c| c.n);
         let mut rows = vec![0usize; w + 1];
-        for c in &comps {
+        for c in &waves {
             rows[(i64::from(c.n) + reach.0.k) as usize + 1] += 1;
         }
         for r in 0..w {
             rows[r + 1] += rows[r];
         }
-        let exact = Exact::new(&comps, reach, (spec, depth), (fit.s_ref, setdown));
+        let exact = Exact::new(&waves, reach, (spec, depth), (fit.s_ref, setdown));
         Self {
             outputs: None,
             exact,
             spec,
-            comps,
+            comps: waves,
             depth,
             reach,
             plan: Plan::new(reach.0.len, reach.1.len),
@@ -225,8 +211,8 @@ impl TransformBound {
         let (px, py) = (self.plan.px, self.plan.py);
         let mut data = pool.take(px * py);
         for c in &self.comps {
-            let row = i64::from(c.n).rem_euclid(px as i64) as usize;
-            let col = i64::from(c.m).rem_euclid(py as i64) as usize;
+            let row = bin_index(i64::from(c.n), px);
+            let col = bin_index(i64::from(c.m), py);
             data[row * py + col] += C64::new(1.0, 0.0);
         }
         self.plan.inverse(&mut data, pool);
@@ -259,9 +245,7 @@ impl TransformBound {
                     continue;
                 }
                 let here = acc[row * py + col];
-                let there = acc[(-n).rem_euclid(px as i64) as usize * py
-                    + (-m).rem_euclid(py as i64) as usize]
-                    .conj();
+                let there = acc[bin_index(-n, px) * py + bin_index(-m, py)].conj();
                 sums += 0.5 * (here + there).re;
                 diffs += (0.5 * (here - there) * C64::new(0.0, -1.0)).re;
             }
@@ -528,13 +512,13 @@ impl TransformBound {
         // Finite depth: the kept outputs into the half spectrum (column m at m mod ny).
         for (line, sums) in half.data.chunks_mut(ny).zip(kept.chunks(columns.max(1))) {
             for m in -oy..=oy {
-                let h = sums[m.rem_euclid(columns as i64) as usize] * norm;
-                line[m.rem_euclid(ny as i64) as usize] += Complex::new(h.re as f32, h.im as f32);
+                let h = sums[bin_index(m, columns)] * norm;
+                line[bin_index(m, ny)] += Complex::new(h.re as f32, h.im as f32);
             }
         }
         // The exact difference terms nearest q = 0 (the set-down at 0).
         for (n, m, e) in self.exact.values(&self.comps, b, self.spec) {
-            let at = n as usize * ny + m.rem_euclid(ny as i64) as usize;
+            let at = n as usize * ny + bin_index(m, ny);
             half.data[at] += Complex::new(e.re as f32, e.im as f32);
         }
     }

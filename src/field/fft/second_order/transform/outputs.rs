@@ -2,8 +2,6 @@
 //! coefficients of the fit (a function of |q| alone, so the same at (n, m) and (n, −m);
 //! tabulated once for a sequence), and the gathering of the transforms there.
 
-use std::f64::consts::TAU;
-
 use rayon::prelude::*;
 use rustfft::Fft;
 use rustfft::num_complex::Complex;
@@ -12,8 +10,8 @@ use super::super::C64;
 use super::super::fit::{ANGLE_NODES, KernelFit, MAX_NB, resonance_t};
 use super::TransformBound;
 use super::products::{Acc, Layout, Part, Real, wide};
-use super::stages::{Passes, wrapped};
-use crate::grid::GridSpec;
+use super::stages::{Passes, folds, twiddles};
+use crate::grid::{GridSpec, bin_index};
 
 /// The output coefficients at output (n, m) of a grid `spec`, depth `depth`:
 /// [`KernelFit::output_coefficients`]' sum and difference coefficients, and T.
@@ -127,15 +125,10 @@ impl TransformBound {
         let oy = self.reach.1.o;
         let columns = (2 * oy + 1).max(0) as usize;
         let (outputs, depth) = (&self.outputs, self.depth);
-        // e^{−2πi ky p/py} of each ky < py (the share's twiddles; none in one share).
-        let turns: Vec<C64> = match passes.acc {
-            1 => Vec::new(),
-            _ => (0..py)
-                .map(|ky| C64::from_polar(1.0, -TAU * ((ky * p) % py) as f64 / py as f64))
-                .collect(),
-        };
-        // ky mod `len` of each ky < py: its place in the share's transform.
-        let fold: Vec<u32> = (0..py).map(|ky| (ky % len) as u32).collect();
+        // e^{−2πi ky p/py} of each ky < py (the share's twiddles; none in one share), and
+        // ky's place in the share's transform.
+        let turns = twiddles(py, p, passes.acc, -1.0);
+        let fold = folds(py, len);
         const { assert!(ANGLE_NODES == 1, "output coefficients of |q| alone") };
         // Output lines a task: their columns n (and −n) are neighbours in each row.
         const LINES: usize = 4;
@@ -151,7 +144,7 @@ impl TransformBound {
                     let xs: Vec<usize> = (0..2 * nl)
                         .map(|l| {
                             let n = (n0 + l % nl) as i64;
-                            wrapped(if l < nl { n } else { -n }, px)
+                            bin_index(if l < nl { n } else { -n }, px)
                         })
                         .collect();
                     columns_of(&acc.b, (&xs, px), fwd_b, cols_b);
@@ -168,7 +161,7 @@ impl TransformBound {
                         };
                         for j in 0..columns {
                             let m = j as i64 - oy;
-                            let (ky, ky_neg) = (wrapped(m, py), wrapped(-m, py));
+                            let (ky, ky_neg) = (bin_index(m, py), bin_index(-m, py));
                             let here = l * len + fold[ky] as usize;
                             let there = (nl + l) * len + fold[ky_neg] as usize;
                             // The sum (re) and difference (im) parts of accumulator f's
@@ -213,7 +206,7 @@ impl TransformBound {
                             if !turns.is_empty() {
                                 part *= turns[ky];
                             }
-                            put(&mut line[wrapped(m, stride)], part);
+                            put(&mut line[bin_index(m, stride)], part);
                         }
                     }
                 },

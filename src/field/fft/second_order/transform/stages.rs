@@ -16,7 +16,7 @@ use super::super::fit::POWERS;
 use super::products::{Acc, Real};
 use super::{TransformBound, Wave};
 use crate::fastmath::powi;
-use crate::grid::GridSpec;
+use crate::grid::{GridSpec, bin_index};
 
 /// The most first-stage fields of a factor: the bases' exponents and one more (the S·A
 /// terms' fields of Q and 1 reach one below and one above them).
@@ -50,28 +50,31 @@ struct Pass<'a> {
 
 impl<'a> Pass<'a> {
     fn new(p: usize, passes: usize, py: usize, inv: &'a dyn Fft<f64>) -> Self {
-        let twiddle = match passes {
-            1 => Vec::new(),
-            _ => (0..py)
-                .map(|m| C64::from_polar(1.0, TAU * ((m * p) % py) as f64 / py as f64))
-                .collect(),
-        };
         let len = py / passes;
         Self {
             len,
-            twiddle,
-            fold: (0..py).map(|m| (m % len) as u32).collect(),
+            twiddle: twiddles(py, p, passes, 1.0),
+            fold: folds(py, len),
             inv,
         }
     }
 }
 
-/// Index `i` of a signed axis (|i| < `n`) wrapped to 0 .. n (`rem_euclid` without its
-/// division).
-#[inline(always)]
-pub(super) fn wrapped(i: i64, n: usize) -> usize {
-    debug_assert!(i.unsigned_abs() < n as u64);
-    (if i < 0 { i + n as i64 } else { i }) as usize
+/// The twiddles of part p of a transform of length `py` split in parts (the rows of y
+/// P·j + p): e^{sign·2πi k p/py} of each k < py; none (empty) for a whole transform.
+pub(super) fn twiddles(py: usize, p: usize, parts: usize, sign: f64) -> Vec<C64> {
+    match parts {
+        1 => Vec::new(),
+        _ => (0..py)
+            .map(|k| C64::from_polar(1.0, sign * TAU * ((k * p) % py) as f64 / py as f64))
+            .collect(),
+    }
+}
+
+/// k mod `len` of each k < `py`: where index k folds to in a part's transform of `len`
+/// (a table, so that no division is made a wave or an output).
+pub(super) fn folds(py: usize, len: usize) -> Vec<u32> {
+    (0..py).map(|k| (k % len) as u32).collect()
 }
 
 /// A row of y of every accumulator of a share: the B terms', the S·A terms'.
@@ -157,7 +160,7 @@ impl TransformBound {
                 }
                 let row_of = self.rows[r]..self.rows[r + 1];
                 for (c, &bi) in self.comps[row_of.clone()].iter().zip(&b[row_of]) {
-                    let col = wrapped(i64::from(c.m), py);
+                    let col = bin_index(i64::from(c.m), py);
                     let bi = match pass.twiddle.get(col) {
                         Some(&t) => bi * t,
                         None => bi,
@@ -235,7 +238,7 @@ impl TransformBound {
         // Kx row r = n + k_x (n = −k_x ..= k_x) goes to column n, wrapped (px > 2k_x +
         // o_x: the wrapped indices never meet).
         let cols: Vec<usize> = (0..self.rows.len() - 1)
-            .map(|r| wrapped(r as i64 - kx, px))
+            .map(|r| bin_index(r as i64 - kx, px))
             .collect();
         // The rows j0 .. j0 + nj of each field of `ones` into `rows` (a field's nj rows
         // after another's): gathered from its first stage, then transformed along kx.

@@ -607,32 +607,3 @@ fn the_exact_outputs_read_in_blocks_equal_their_pair_sums_to_the_bit() {
         assert_eq!(v, want, "output ({n}, {m})");
     }
 }
-
-#[test]
-fn the_waves_are_the_components_in_their_order_over_several_blocks() {
-    // More than two blocks of components, each distinct in every field a wave keeps: the
-    // waves made from the last block backwards come out in the components' order (a block
-    // taken in the wrong order, or one left out, breaks it).
-    let count = 2 * (1 << 16) + 37;
-    let comps: Vec<Component> = (0..count)
-        .map(|i| {
-            let f = i as f64;
-            let mut c = Component::new(0.01 * (1.0 + f), 0.02, 0.5 + f, 1e-3 * f, Some(20.0));
-            (c.n, c.m) = (i as i64 % 977 - 488, i as i64 % 311 - 155);
-            c
-        })
-        .collect();
-    let fields = |n: i32, m: i32, s: f64, q: f64, rho: f64, phi: f64| {
-        (n, m, s.to_bits(), q.to_bits(), rho.to_bits(), phi.to_bits())
-    };
-    let want: Vec<_> = comps
-        .iter()
-        .map(|c| fields(c.n as i32, c.m as i32, c.s, c.q, c.rho, c.phi))
-        .collect();
-    let got: Vec<_> = waves_of(comps)
-        .iter()
-        .map(|w| fields(w.n, w.m, w.s, w.q, w.rho, w.phi))
-        .collect();
-    assert_eq!(got.len(), want.len());
-    assert!(got == want, "the waves differ from the components");
-}
